@@ -1,0 +1,60 @@
+#pragma once
+
+// STL
+#include <memory>
+#include <optional>
+#include <string_view>
+
+// Package
+#include "sphere_contact_estimator/core/cylinder_parameters.h"
+#include "sphere_contact_estimator/core/cylinder_scales.h"
+#include "sphere_contact_estimator/core/cylinder_state.h"
+
+namespace sphere_contact_estimator
+{
+/// The three ways to evaluate the steady rolling state of the cylinder.
+enum class CylinderModelKind
+{
+  Exact,      ///< eq. 18 solved by a bracketed root finder (CylinderExact)
+  Expansion,  ///< small-velocity expansions, eqs. 21, 23, 24, 27 (CylinderExpansion)
+  Table,      ///< exact solution tabulated on construction and interpolated (CylinderTable)
+};
+
+const char* toString(CylinderModelKind kind);
+/// Parses "exact", "expansion" or "table".
+std::optional<CylinderModelKind> parseCylinderModelKind(std::string_view name);
+
+/// Common interface: the steady state at a rolling speed.
+class CylinderModel
+{
+public:
+  /// Validates the parameters (std::invalid_argument on non-physical values).
+  explicit CylinderModel(const CylinderParameters& parameters);
+  virtual ~CylinderModel() = default;
+  CylinderModel(const CylinderModel&) = default;
+  CylinderModel& operator=(const CylinderModel&) = default;
+
+  /// Steady state at rolling speed v [m/s]. Throws std::invalid_argument unless v is finite and
+  /// >= 0 (a speed is a norm; the resistance always opposes the motion).
+  virtual CylinderState solve(double v) const = 0;
+  virtual CylinderModelKind kind() const = 0;
+
+  const CylinderParameters& parameters() const { return p_; }
+  const CylinderScales& scales() const { return scales_; }
+
+protected:
+  /// Throws std::invalid_argument for a speed that is negative or not finite.
+  static void checkSpeed(double v);
+  /// Static state (v = 0), eqs. 22 and 25: symmetric patch, no resistance.
+  CylinderState staticState() const;
+  /// Fills the derived fields of a state whose v, h, xi_plus, xi_minus, F_N, F_R and regime are set.
+  void finish(CylinderState& s) const;
+
+  CylinderParameters p_;
+  CylinderScales scales_;
+};
+
+/// Creates a model of the given kind.
+std::unique_ptr<CylinderModel> makeCylinderModel(CylinderModelKind kind, const CylinderParameters& parameters);
+
+}  // namespace sphere_contact_estimator

@@ -1,0 +1,42 @@
+// contact_eval: the core models from the command line, JSON on stdout, paper frame, SI units.
+// Bad input: a message on stderr and a non-zero exit status (CLI11's for usage, 2 for values).
+
+// STL
+#include <exception>
+#include <iostream>
+
+// CLI11
+#include <CLI/CLI.hpp>
+
+// Package
+#include "cli/cylinder_command.h"
+
+int main(int argc, char** argv)
+{
+  namespace cli = sphere_contact_estimator::cli;
+  CLI::App app{ "contact_eval: evaluate the contact models of sphere_contact_estimator (JSON out)" };
+  app.require_subcommand(1);
+  cli::CylinderOptions cylinder;
+  CLI::App* cylinder_command = cli::addCylinderCommand(app, cylinder);
+
+  try
+  {
+    app.parse(argc, argv);
+  }
+  catch (const CLI::ParseError& e)
+  {
+    return app.exit(e);
+  }
+
+  try
+  {
+    if (cylinder_command->parsed())
+      cli::runCylinderCommand(cylinder, std::cout);
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "contact_eval: error: " << e.what() << '\n';
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,165 @@
+// contact_eval as a user runs it: JSON on stdout that matches the core, and clear failures.
+
+// STL
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+// nlohmann
+#include <nlohmann/json.hpp>
+
+// GTest
+#include <gtest/gtest.h>
+
+// Package
+#include "sphere_contact_estimator/core/cylinder_exact.h"
+#include "sphere_contact_estimator/core/cylinder_expansion.h"
+
+namespace sphere_contact_estimator
+{
+namespace
+{
+struct Outcome
+{
+  int status = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path)
+{
+  std::ifstream f(path);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+Outcome contactEval(const std::string& args)
+{
+  char out_path[] = "/tmp/contact_eval_outXXXXXX";
+  char err_path[] = "/tmp/contact_eval_errXXXXXX";
+  close(mkstemp(out_path));
+  close(mkstemp(err_path));
+  const std::string cmd = std::string(CONTACT_EVAL_PATH) + " " + args + " >" + out_path + " 2>" + err_path;
+  const int raw = std::system(cmd.c_str());
+  Outcome r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = slurp(out_path);
+  r.err = slurp(err_path);
+  std::remove(out_path);
+  std::remove(err_path);
+  return r;
+}
+
+const std::string kPaper = "cylinder --radius 0.1 --mass-per-length 250 --stiffness 1e7 --damping 5e5 "
+                           "--surface-density 100 ";
+
+CylinderParameters paper()
+{
+  CylinderParameters p;
+  p.R = 0.1;
+  p.M = 250;
+  p.k = 1e7;
+  p.gamma = 5e5;
+  p.m = 100;
+  return p;
+}
+
+TEST(ContactEval, SpeedPrintsOneObjectThatMatchesTheCore)
+{
+  const Outcome r = contactEval(kPaper + "--speed 0.7");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.is_object());
+  for (const char* key : { "h", "xi_plus", "xi_minus", "F_R", "torque", "mu_roll", "regime", "valid", "warnings", "v" })
+    EXPECT_TRUE(j.contains(key)) << key;
+  const CylinderState s = CylinderExact(paper()).solve(0.7);
+  EXPECT_DOUBLE_EQ(j["h"].get<double>(), s.h);
+  EXPECT_DOUBLE_EQ(j["xi_plus"].get<double>(), s.xi_plus);
+  EXPECT_DOUBLE_EQ(j["xi_minus"].get<double>(), s.xi_minus);
+  EXPECT_DOUBLE_EQ(j["F_R"].get<double>(), s.F_R);
+  EXPECT_DOUBLE_EQ(j["torque"].get<double>(), s.torque);
+  EXPECT_DOUBLE_EQ(j["mu_roll"].get<double>(), s.mu_roll);
+  EXPECT_EQ(j["regime"], "contact_patch");
+  EXPECT_EQ(j["valid"], true);
+  EXPECT_TRUE(j["warnings"].empty());
+  EXPECT_EQ(j["model"], "exact");
+}
+
+TEST(ContactEval, LengthGivesTotals)
+{
+  const auto one = nlohmann::json::parse(contactEval(kPaper + "--speed 0.7").out);
+  const auto three = nlohmann::json::parse(contactEval(kPaper + "--speed 0.7 --length 3").out);
+  EXPECT_DOUBLE_EQ(three["F_R"].get<double>(), 3.0 * one["F_R"].get<double>());
+  EXPECT_DOUBLE_EQ(three["torque"].get<double>(), 3.0 * one["torque"].get<double>());
+  EXPECT_DOUBLE_EQ(three["F_R_per_length"].get<double>(), one["F_R"].get<double>());
+  EXPECT_DOUBLE_EQ(three["mu_roll"].get<double>(), one["mu_roll"].get<double>());
+  EXPECT_DOUBLE_EQ(three["h"].get<double>(), one["h"].get<double>());
+}
+
+TEST(ContactEval, SweepPrintsAnArrayAcrossRegimes)
+{
+  const Outcome r = contactEval(kPaper + "--sweep 0 60 61 --g 9.81");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.is_array());
+  ASSERT_EQ(j.size(), 61u);
+  EXPECT_EQ(j.front()["regime"], "static");
+  EXPECT_EQ(j.back()["regime"], "point_contact");
+  EXPECT_EQ(j.back()["valid"], false);
+  EXPECT_FALSE(j.back()["warnings"].empty());
+  for (std::size_t i = 0; i < j.size(); ++i)
+  {
+    EXPECT_DOUBLE_EQ(j[i]["v"].get<double>(), static_cast<double>(i));
+    for (const char* key : { "h", "xi_plus", "xi_minus", "F_R", "torque", "mu_roll" })
+      EXPECT_TRUE(j[i][key].is_number()) << key << " at " << i;
+  }
+}
+
+TEST(ContactEval, ModelsAndPeak)
+{
+  const auto e = nlohmann::json::parse(contactEval(kPaper + "--speed 0.1 --model expansion").out);
+  EXPECT_EQ(e["model"], "expansion");
+  EXPECT_DOUBLE_EQ(e["mu_roll"].get<double>(), CylinderExpansion(paper()).solve(0.1).mu_roll);
+  const auto t = nlohmann::json::parse(contactEval(kPaper + "--speed 0.1 --model table").out);
+  EXPECT_EQ(t["model"], "table");
+  EXPECT_NEAR(t["mu_roll"].get<double>(), CylinderExact(paper()).solve(0.1).mu_roll, t["mu_roll_error"].get<double>());
+  const auto peak = nlohmann::json::parse(contactEval(kPaper + "--peak --model expansion").out);
+  EXPECT_NEAR(peak["v"].get<double>(), peak["v_star"].get<double>(), 1e-6 * peak["v_star"].get<double>());
+}
+
+TEST(ContactEval, BadInputFailsWithAMessage)
+{
+  const std::vector<std::string> bad{
+    kPaper,                                              // no speed
+    kPaper + "--speed -1",                               // negative speed
+    kPaper + "--speed nan",                              // not a number
+    kPaper + "--speed 1 --sweep 0 1 3",                  // both
+    kPaper + "--sweep 0 1",                              // two values
+    kPaper + "--sweep 1 0 3",                            // reversed
+    kPaper + "--sweep 0 1 2.5",                          // fractional count
+    kPaper + "--speed 1 --model fancy",                  // unknown model
+    "cylinder --radius -0.1 --mass-per-length 250 --stiffness 1e7 --damping 5e5 --surface-density 100 --speed 1",
+    "cylinder --radius 0.1 --mass-per-length 250 --stiffness 0 --damping 5e5 --surface-density 100 --speed 1",
+    "cylinder --radius 0.1 --mass-per-length 250 --stiffness 1e7 --damping -5 --surface-density 100 --speed 1",
+    "cylinder --radius 0.1 --mass-per-length 250 --stiffness 1e7 --damping 5e5 --speed 1",  // missing m
+    "cylinder --radius abc --mass-per-length 250 --stiffness 1e7 --damping 5e5 --surface-density 100 --speed 1",
+    "",                                                  // no subcommand
+  };
+  for (const std::string& args : bad)
+  {
+    const Outcome r = contactEval(args);
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_FALSE(r.err.empty()) << args;
+    EXPECT_TRUE(r.out.empty()) << args << " printed " << r.out;
+  }
+  const Outcome r = contactEval("cylinder --radius -0.1 --mass-per-length 250 --stiffness 1e7 --damping 5e5 "
+                            "--surface-density 100 --speed 1");
+  EXPECT_NE(r.err.find("radius (R)"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace sphere_contact_estimator
