@@ -47,6 +47,9 @@ build() {
   ln -sfn "$REPO" "$WS/src/$PKG"
   log "building $PKG in $WS (${*:-all})"
   (cd "$WS" && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -j"$(nproc)" "$@")
+  # ROS's setup scripts read unset variables: source them without -u.
+  set +u
   # shellcheck disable=SC1091
   source "$WS/devel/setup.bash"
+  set -u
 }

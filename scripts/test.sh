@@ -12,6 +12,20 @@ log "running the tests"
 rc=0
 ctest --output-on-failure --no-tests=error -j"$(nproc)" || rc=$?
 catkin_test_results "test_results/$PKG" >/dev/null || { [ "$rc" -ne 0 ] || rc=1; }
+# One line over every test case (ctest counts binaries; catkin_test_results counts gtest cases twice).
+/usr/bin/python3 - "test_results/$PKG" <<'PY' || true
+import glob, sys, xml.etree.ElementTree as ET
+passed = failed = skipped = 0
+for path in glob.glob(sys.argv[1] + "/gtest-*.xml") + glob.glob(sys.argv[1] + "/rostest-*.xml"):
+    for case in ET.parse(path).getroot().iter("testcase"):
+        if case.find("failure") is not None or case.find("error") is not None:
+            failed += 1
+        elif case.find("skipped") is not None or case.get("status") == "notrun":
+            skipped += 1
+        else:
+            passed += 1
+print("test cases: %d passed, %d failed, %d skipped" % (passed, failed, skipped))
+PY
 if [ "$rc" -ne 0 ]; then
   catkin_test_results --verbose "test_results/$PKG" | grep -E 'Summary|Failure|failure' | head -50 || true
   log "tests FAILED"

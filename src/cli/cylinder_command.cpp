@@ -92,7 +92,7 @@ void runCylinderCommand(const CylinderOptions& o, std::ostream& out)
     out << toJson(model->solve(v.front()), *model).dump(2) << '\n';
     return;
   }
-  nlohmann::json all = nlohmann::json::array();
+  nlohmann::ordered_json all = nlohmann::ordered_json::array();
   for (double x : v)
     all.push_back(toJson(model->solve(x), *model));
   out << all.dump(2) << '\n';

@@ -5,16 +5,16 @@
 
 namespace sphere_contact_estimator::cli
 {
-nlohmann::json number(double x)
+nlohmann::ordered_json number(double x)
 {
-  return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
+  return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr);
 }
 
-nlohmann::json toJson(const CylinderState& s, const CylinderModel& model)
+nlohmann::ordered_json toJson(const CylinderState& s, const CylinderModel& model)
 {
   const double L = model.parameters().L;
   const CylinderScales& sc = model.scales();
-  nlohmann::json j;
+  nlohmann::ordered_json j;
   j["v"] = s.v;
   j["model"] = toString(model.kind());
   j["regime"] = toString(s.regime);
@@ -40,8 +40,8 @@ nlohmann::json toJson(const CylinderState& s, const CylinderModel& model)
   j["lambda"] = sc.lambda;
   j["overdamped"] = sc.overdamped;
   j["v_critical"] = number(sc.v_critical);
-  j["v_star"] = sc.v_star ? number(*sc.v_star) : nlohmann::json(nullptr);
-  j["mu_star"] = sc.mu_star ? number(*sc.mu_star) : nlohmann::json(nullptr);
+  j["v_star"] = sc.v_star ? number(*sc.v_star) : nlohmann::ordered_json(nullptr);
+  j["mu_star"] = sc.mu_star ? number(*sc.mu_star) : nlohmann::ordered_json(nullptr);
   return j;
 }
 

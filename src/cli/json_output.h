@@ -9,10 +9,10 @@
 namespace sphere_contact_estimator::cli
 {
 /// A finite number, or null (JSON has no inf/NaN).
-nlohmann::json number(double x);
+nlohmann::ordered_json number(double x);
 
 /// One cylinder steady state as the JSON object contact_eval prints. Forces and torques are totals
 /// over the effective length L; the *_per_length fields carry the paper's per-unit-length values.
-nlohmann::json toJson(const CylinderState& state, const CylinderModel& model);
+nlohmann::ordered_json toJson(const CylinderState& state, const CylinderModel& model);
 
 }  // namespace sphere_contact_estimator::cli
