@@ -34,7 +34,22 @@ ContactPatch contactPatch(const CylinderParameters& p, double xi_plus, double v)
   const double D = 2.0 * root;  // distance between the two roots of eq. 12
   const double c0 = p.k / (2.0 * p.R);
   c.F_N = c0 * w * w * (0.5 * D - w / 3.0);
-  c.first_moment = -c0 * (c.xi_minus * w * w * (w / 3.0 - 0.5 * D) + w * w * w * (0.25 * w - D / 3.0));
+  // First moment. About the vertex xi = gamma v/k of the parabola, the odd part integrates to
+  // (u_+^2 - D^2/4)^2 / 4 with u_+ = xi_+ - gamma v/k, and u_+^2 - D^2/4 = -2 v (gamma xi_+ - m v)/k exactly:
+  //   -integral xi f = (gamma v/k) F_N - v^2 (gamma xi_+ - m v)^2 / (2 R k),            (a)
+  // O(v) term by term, so accurate at creep speeds where the form in w, with the vertex xi_- + D/2,
+  //   -integral xi f = k/(2R) w^2 [xi_- (D/2 - w/3) + D w/3 - w^2/4],                   (b)
+  // cancels. When gamma v/k exceeds xi_+ (a viscous, narrow patch), (a) cancels instead and (b) does not.
+  const double vertex = p.gamma * v / p.k;
+  if (vertex <= s)
+  {
+    const double q = p.gamma * s - p.m * v;
+    c.first_moment = vertex * c.F_N - v * v * q * q / (2.0 * p.R * p.k);
+  }
+  else
+  {
+    c.first_moment = c0 * w * w * (c.xi_minus * (0.5 * D - w / 3.0) + D * w / 3.0 - 0.25 * w * w);
+  }
   return c;
 }
 

@@ -78,18 +78,45 @@ CylinderState CylinderExact::solve(double v, Slopes* slopes) const
   }
   else
   {
-    // G is increasing in xi_+ on [s_c, inf): bracket the root, then TOMS 748.
+    // G is increasing in xi_+ on [s_c, inf): bracket the root within a factor of 2 around an estimate,
+    // then TOMS 748. The estimate is the static xi0, or, when the rear boundary has moved far (gamma v/k
+    // >> xi_+), the viscous limit of eq. 18, M g = gamma v xi_+^2 / (2R).
     const auto G = [this, v](double x) { return residual(x, v); };
-    double lo = s_c, G_lo = G_c;
-    double hi = std::max(scales_.xi0, 2.0 * s_c), G_hi = G(hi);
-    while (G_hi < 0.0)
+    double guess = scales_.xi0;
+    if (gamma > 0.0)
+      guess = std::min(guess, std::sqrt(2.0 * R * p_.weight() / (gamma * v)));
+    if (!(guess > s_c))
+      guess = s_c > 0.0 ? 2.0 * s_c : scales_.xi0;
+    double lo = s_c, G_lo = G_c, hi = guess, G_hi = G(hi);
+    if (G_hi < 0.0)
     {
-      lo = hi;
-      G_lo = G_hi;
-      hi *= 2.0;
-      G_hi = G(hi);
+      do
+      {
+        lo = hi;
+        G_lo = G_hi;
+        hi *= 2.0;
+        G_hi = G(hi);
+      } while (G_hi < 0.0);
     }
-    std::uintmax_t iterations = 100;
+    else
+    {
+      for (;;)
+      {
+        const double x = 0.5 * hi;
+        if (x <= s_c)
+          break;  // [s_c, hi] brackets it: G(s_c) < 0
+        const double G_x = G(x);
+        if (G_x < 0.0)
+        {
+          lo = x;
+          G_lo = G_x;
+          break;
+        }
+        hi = x;
+        G_hi = G_x;
+      }
+    }
+    std::uintmax_t iterations = 200;
     const auto bracket = boost::math::tools::toms748_solve(G, lo, hi, G_lo, G_hi,
                                                            boost::math::tools::eps_tolerance<double>(kToleranceBits),
                                                            iterations);

@@ -42,11 +42,11 @@ CylinderModel::CylinderModel(const CylinderParameters& parameters) : p_(paramete
 
 void CylinderModel::checkSpeed(double v)
 {
-  if (std::isfinite(v) && v >= 0.0)
+  if (v >= 0.0 && v <= kMaxSpeed)
     return;
   std::ostringstream msg;
   msg.precision(17);
-  msg << "invalid rolling speed v = " << v << ": must be finite and >= 0 [m/s]";
+  msg << "invalid rolling speed v = " << v << " m/s: must be finite, >= 0 and below the speed of light";
   throw std::invalid_argument(msg.str());
 }
 

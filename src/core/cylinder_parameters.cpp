@@ -9,29 +9,35 @@ namespace sphere_contact_estimator
 {
 namespace
 {
-void require(bool ok, const char* name, const char* symbol, double value, const char* rule)
+// Throws unless x is finite and, when zero_allowed is false or x != 0, inside r.
+void require(double x, CylinderParameters::Range r, bool zero_allowed, const char* name, const char* symbol,
+             const char* unit)
 {
+  const bool ok = std::isfinite(x) && ((zero_allowed && x == 0.0) || (x >= r.lo && x <= r.hi));
   if (ok)
     return;
   std::ostringstream msg;
   msg.precision(17);
-  msg << "invalid cylinder parameter " << name << " (" << symbol << ") = " << value << ": must be " << rule;
+  msg << "invalid cylinder parameter " << name << " (" << symbol << ") = " << x << " " << unit << ": ";
+  if (!std::isfinite(x))
+    msg << "must be finite";
+  else if (x < 0.0 || (x == 0.0 && !zero_allowed))
+    msg << "must be " << (zero_allowed ? ">= 0" : "> 0");
+  else
+    msg.precision(3), msg << "outside the supported range [" << r.lo << ", " << r.hi << "]" << (zero_allowed ? " or 0" : "");
   throw std::invalid_argument(msg.str());
 }
 }  // namespace
 
 void CylinderParameters::validate() const
 {
-  const auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
-  const auto non_negative = [](double x) { return std::isfinite(x) && x >= 0.0; };
-  require(positive(R), "radius", "R", R, "finite and > 0 [m]");
-  require(positive(M), "mass per length", "M", M, "finite and > 0 [kg/m]");
-  require(positive(k), "surface stiffness", "k", k, "finite and > 0 [N/m^3]");
-  require(non_negative(gamma), "surface damping", "gamma", gamma, "finite and >= 0 [kg/(m^2 s)]");
-  require(non_negative(m), "surface density", "m", m, "finite and >= 0 [kg/m^2]");
-  require(positive(g), "gravity", "g", g, "finite and > 0 [m/s^2]");
-  require(positive(L), "effective length", "L", L, "finite and > 0 [m]");
-  require(std::isfinite(weight()), "weight per length", "M g", weight(), "finite [N/m]");
+  require(R, kRangeR, false, "radius", "R", "m");
+  require(M, kRangeM, false, "mass per length", "M", "kg/m");
+  require(k, kRangeK, false, "surface stiffness", "k", "N/m^3");
+  require(gamma, kRangeGamma, true, "surface damping", "gamma", "kg/(m^2 s)");
+  require(m, kRangeSurfaceDensity, true, "surface density", "m", "kg/m^2");
+  require(g, kRangeG, false, "gravity", "g", "m/s^2");
+  require(L, kRangeL, false, "effective length", "L", "m");
 }
 
 }  // namespace sphere_contact_estimator

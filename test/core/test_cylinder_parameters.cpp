@@ -64,11 +64,38 @@ TEST(CylinderParameters, NonPhysicalValuesAreRejected)
     }
 }
 
+TEST(CylinderParameters, OutsideTheSupportedRange)
+{
+  // Finite but absurd magnitudes are refused too: they would overflow intermediates of eq. 18.
+  const std::vector<std::pair<double CylinderParameters::*, double>> cases{
+    { &CylinderParameters::R, 1e7 },    { &CylinderParameters::R, 1e-10 },     { &CylinderParameters::M, 1e13 },
+    { &CylinderParameters::k, 1e21 },   { &CylinderParameters::gamma, 1e-13 }, { &CylinderParameters::m, 1e13 },
+    { &CylinderParameters::g, 1e7 },    { &CylinderParameters::L, 1e10 },
+  };
+  for (const auto& [field, value] : cases)
+  {
+    CylinderParameters p = paperParameters();
+    p.*field = value;
+    try
+    {
+      p.validate();
+      ADD_FAILURE() << "accepted " << value;
+    }
+    catch (const std::invalid_argument& e)
+    {
+      EXPECT_NE(std::string(e.what()).find("supported range"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(CylinderParameters, BoundaryValuesAreAccepted)
 {
   CylinderParameters p = paperParameters();
   p.gamma = 0.0;
   p.m = 0.0;
+  EXPECT_NO_THROW(p.validate());
+  p.R = CylinderParameters::kRangeR.hi;
+  p.k = CylinderParameters::kRangeK.lo;
   EXPECT_NO_THROW(p.validate());
 }
 
@@ -77,7 +104,7 @@ TEST(CylinderParameters, BadSpeedsAreRejected)
   for (const CylinderModelKind kind : { CylinderModelKind::Exact, CylinderModelKind::Expansion, CylinderModelKind::Table })
   {
     const auto model = makeCylinderModel(kind, paperParameters());
-    for (double v : { -1e-12, -1.0, kNaN, kInf, -kInf })
+    for (double v : { -1e-12, -1.0, kNaN, kInf, -kInf, 3.0e8 })
       EXPECT_THROW(model->solve(v), std::invalid_argument) << toString(kind) << " v = " << v;
   }
 }

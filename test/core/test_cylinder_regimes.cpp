@@ -3,6 +3,7 @@
 // STL
 #include <cmath>
 #include <limits>
+#include <random>
 #include <vector>
 
 // GTest
@@ -178,6 +179,49 @@ TEST(CylinderRegimes, DegenerateButAllowedParameters)
     for (double v : { 0.0, 1e-6, 0.5, 30.0, 1e4 })
       expectFinite(model.solve(v));
     EXPECT_EQ(k < 1e3, bool(model.solve(0.0).flags & cylinder_flags::kLargeDeformation)) << "k = " << k;
+  }
+}
+
+TEST(CylinderRegimes, RandomParametersAcrossTheSupportedRange)
+{
+  // Log-uniform parameters over the whole supported range (CylinderParameters::kRange*), with its corners
+  // drawn often, and speeds from the smallest double to just below the speed of light.
+  using P = CylinderParameters;
+  std::mt19937_64 rng(2024);
+  const auto draw = [&rng](P::Range r) {
+    switch (rng() % 6)
+    {
+      case 0:
+        return r.lo;
+      case 1:
+        return r.hi;
+      default:
+        return std::pow(10.0, std::uniform_real_distribution<double>(std::log10(r.lo), std::log10(r.hi))(rng));
+    }
+  };
+  for (int i = 0; i < 3000; ++i)
+  {
+    P p;
+    p.R = draw(P::kRangeR);
+    p.M = draw(P::kRangeM);
+    p.k = draw(P::kRangeK);
+    p.gamma = i % 10 == 0 ? 0.0 : draw(P::kRangeGamma);
+    p.m = i % 7 == 0 ? 0.0 : draw(P::kRangeSurfaceDensity);
+    p.g = draw(P::kRangeG);
+    const CylinderExact exact(p);
+    const CylinderExpansion expansion(p);
+    for (double v : { 0.0, std::numeric_limits<double>::denorm_min(), 1e-12, draw({ 1e-9, 1e8 }), 2.9e8 })
+    {
+      const CylinderState s = exact.solve(v);
+      SCOPED_TRACE(testing::Message() << "R=" << p.R << " M=" << p.M << " k=" << p.k << " gamma=" << p.gamma
+                                      << " m=" << p.m << " g=" << p.g << " v=" << v);
+      expectFinite(s);
+      expectFinite(expansion.solve(v));
+      if (s.regime == CylinderRegime::ContactPatch)
+      {
+        EXPECT_NEAR(s.F_N + s.F_N_impact, p.M * p.g, 1e-9 * p.M * p.g);
+      }
+    }
   }
 }
 

@@ -24,7 +24,10 @@ struct ContactPatch
 /// xi_-' = xi_- + D and D = 2 sqrt(xi_+^2 + lambda v^2), the integrals become polynomials in the
 /// width w, so they stay accurate as the patch closes (w -> 0 near the critical speed):
 ///   -integral f       = k/(2R) w^2 (D/2 - w/3)
-///   -integral xi f    = -k/(2R) [xi_- (w^3/3 - D w^2/2) + w^4/4 - D w^3/3]
+///   -integral xi f    = (gamma v/k) (-integral f) - v^2 (gamma xi_+ - m v)^2 / (2 R k)   if gamma v/k <= xi_+
+///                     = k/(2R) w^2 [xi_- (D/2 - w/3) + D w/3 - w^2/4]                    otherwise
+/// The first form is O(v) term by term (accurate at creep speeds), the second does not cancel when the
+/// patch is narrow and viscous; both are the same polynomial.
 ContactPatch contactPatch(const CylinderParameters& p, double xi_plus, double v);
 
 }  // namespace sphere_contact_estimator

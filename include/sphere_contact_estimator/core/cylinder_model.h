@@ -34,9 +34,12 @@ public:
   CylinderModel(const CylinderModel&) = default;
   CylinderModel& operator=(const CylinderModel&) = default;
 
-  /// Steady state at rolling speed v [m/s]. Throws std::invalid_argument unless v is finite and
-  /// >= 0 (a speed is a norm; the resistance always opposes the motion).
+  /// Steady state at rolling speed v [m/s]. Throws std::invalid_argument unless 0 <= v <= kMaxSpeed
+  /// (a speed is a norm; the resistance always opposes the motion).
   virtual CylinderState solve(double v) const = 0;
+
+  /// The speed of light [m/s]: any faster rolling speed is non-physical input.
+  static constexpr double kMaxSpeed = 299792458.0;
   virtual CylinderModelKind kind() const = 0;
 
   const CylinderParameters& parameters() const { return p_; }

@@ -18,8 +18,23 @@ struct CylinderParameters
   double L = 1.0;        ///< effective length turning per-unit-length results into totals [m]
 
   /// Throws std::invalid_argument naming the first non-physical value: R, M, k, g, L must be
-  /// finite and > 0; gamma and m finite and >= 0.
+  /// finite and > 0; gamma and m finite and >= 0. Values must also lie in the supported range
+  /// (kRange), which spans many orders of magnitude beyond any real wheel and surface and keeps every
+  /// intermediate of the solution representable in double precision.
   void validate() const;
+
+  /// Supported magnitude of each parameter: {smallest non-zero, largest}.
+  struct Range
+  {
+    double lo, hi;
+  };
+  static constexpr Range kRangeR{ 1e-9, 1e6 };
+  static constexpr Range kRangeM{ 1e-12, 1e12 };
+  static constexpr Range kRangeK{ 1e-6, 1e20 };
+  static constexpr Range kRangeGamma{ 1e-12, 1e18 };  // or exactly 0
+  static constexpr Range kRangeSurfaceDensity{ 1e-12, 1e12 };  // or exactly 0
+  static constexpr Range kRangeG{ 1e-6, 1e6 };
+  static constexpr Range kRangeL{ 1e-9, 1e9 };
 
   /// Weight per unit length M g [N/m], the load that eq. 9 balances.
   double weight() const { return M * g; }
