@@ -53,6 +53,18 @@ def column(rows, key, scale=1.0):
     return [r[key] * scale if r[key] is not None else float("nan") for r in rows]
 
 
+def finish(ax, fig, ylabel, title, vmax, legend_size=None):
+    """Axes of the paper's Figs. 2 and 3: speed from 0 to vmax, quantity from 0."""
+    ax.set_xlabel("v [m/s]")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.set_xlim(0, vmax)
+    ax.set_ylim(bottom=0)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=legend_size)
+    fig.tight_layout()
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--output", required=True, help="directory for the PNG files")
@@ -85,14 +97,7 @@ def main():
     ax.plot(v, column(exact, "h", 1e3), "k-", label="exact, eq. 18")
     ax.plot(v_exp, [x for x, ok in zip(column(expansion, "h", 1e3), physical) if ok], "k--",
             label="expansion, eq. 24")
-    ax.set_xlabel("v [m/s]")
-    ax.set_ylabel("h [mm]")
-    ax.set_title("Fig. 2: penetration depth")
-    ax.set_xlim(0, a.vmax)
-    ax.set_ylim(bottom=0)
-    ax.grid(alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
+    finish(ax, fig, "h [mm]", "Fig. 2: penetration depth", a.vmax)
     fig2 = os.path.join(a.output, "fig2_penetration_depth.png")
     fig.savefig(fig2, dpi=150)
 
@@ -106,14 +111,7 @@ def main():
                 label="$\\mu^*_{roll}$, $v^*$ (eqs. 28, 29): %.4g mm at %.4g m/s" % (mu_star * 1e3, v_star))
     ax.plot([peak["v"]], [peak["mu_roll"] * 1e3], "s", mfc="none", mec="C3",
             label="exact maximum: %.4g mm at %.4g m/s" % (peak["mu_roll"] * 1e3, peak["v"]))
-    ax.set_xlabel("v [m/s]")
-    ax.set_ylabel("$\\mu_{roll}$ [mm]")
-    ax.set_title("Fig. 3: rolling-friction coefficient")
-    ax.set_xlim(0, a.vmax)
-    ax.set_ylim(bottom=0)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
+    finish(ax, fig, "$\\mu_{roll}$ [mm]", "Fig. 3: rolling-friction coefficient", a.vmax, legend_size=8)
     fig3 = os.path.join(a.output, "fig3_rolling_friction.png")
     fig.savefig(fig3, dpi=150)
 

@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 // Package
+#include "../core/cylinder_test_support.h"
 #include "sphere_contact_estimator/core/cylinder_exact.h"
 #include "sphere_contact_estimator/core/cylinder_expansion.h"
 
@@ -57,15 +58,10 @@ Outcome contactEval(const std::string& args)
 const std::string kPaper = "cylinder --radius 0.1 --mass-per-length 250 --stiffness 1e7 --damping 5e5 "
                            "--surface-density 100 ";
 
+// the paper's set, with contact_eval's default g
 CylinderParameters paper()
 {
-  CylinderParameters p;
-  p.R = 0.1;
-  p.M = 250;
-  p.k = 1e7;
-  p.gamma = 5e5;
-  p.m = 100;
-  return p;
+  return test::paperParameters(9.81);
 }
 
 TEST(ContactEval, SpeedPrintsOneObjectThatMatchesTheCore)
