@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 // Package
+#include "cli/brush_commands.h"
 #include "cli/cylinder_command.h"
 
 int main(int argc, char** argv)
@@ -18,6 +19,10 @@ int main(int argc, char** argv)
   app.require_subcommand(1);
   cli::CylinderOptions cylinder;
   CLI::App* cylinder_command = cli::addCylinderCommand(app, cylinder);
+  cli::SlipsOptions slips;
+  CLI::App* slips_command = cli::addSlipsCommand(app, slips);
+  cli::BrushOptions brush;
+  CLI::App* brush_command = cli::addBrushCommand(app, brush);
 
   try
   {
@@ -32,6 +37,10 @@ int main(int argc, char** argv)
   {
     if (cylinder_command->parsed())
       cli::runCylinderCommand(cylinder, std::cout);
+    else if (slips_command->parsed())
+      cli::runSlipsCommand(slips, std::cout);
+    else if (brush_command->parsed())
+      cli::runBrushCommand(brush, std::cout);
   }
   catch (const std::exception& e)
   {

@@ -1,0 +1,36 @@
+#pragma once
+
+// STL
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sphere_contact_estimator
+{
+/// Bit flags qualifying a brush evaluation. Those in kInvalidatingFlags make it invalid.
+namespace brush_flags
+{
+constexpr std::uint32_t kStandstill = 1u << 0;           ///< V_r below the standstill speed: slip form undefined
+constexpr std::uint32_t kNoSteadyStateTilt = 1u << 1;    ///< |R_gamma| < a: no steady state on an inner disc (Fig. 2)
+constexpr std::uint32_t kLinearSaturated = 1u << 2;      ///< linear model beyond mu F_z: force scaled back
+constexpr std::uint32_t kSubstepsTruncated = 1u << 3;    ///< transient: step too long, fewer substeps than accuracy wants
+constexpr std::uint32_t kInvalidatingFlags = kStandstill | kNoSteadyStateTilt | kLinearSaturated;
+
+std::vector<std::string> describe(std::uint32_t flags);
+}  // namespace brush_flags
+
+/// What a brush model returns: forces and moment on the sphere, in the paper frame (Romano et al.,
+/// Sect. 6), and how much of the patch slides.
+struct BrushForces
+{
+  double F_x = 0.0;               ///< [N]
+  double F_y = 0.0;               ///< [N]
+  double M_z = 0.0;               ///< about the patch centre, integral of (x q_y - y q_x) [N m]
+  double sliding_fraction = 0.0;  ///< share of the patch area where the bristles slide [-]
+  double max_utilisation = 0.0;   ///< largest |q_t| / (mu q_z) over the patch [-]
+  std::uint32_t flags = 0;        ///< brush_flags bits
+
+  bool valid() const { return (flags & brush_flags::kInvalidatingFlags) == 0; }
+};
+
+}  // namespace sphere_contact_estimator

@@ -1,0 +1,42 @@
+#pragma once
+
+namespace sphere_contact_estimator
+{
+/// Vertical pressure distribution q_z over the circular patch; each integrates to F_z.
+enum class PressureDistribution
+{
+  Parabolic,  ///< 2 F_z / (pi a^2) (1 - r^2/a^2), the paper's Sect. 6 choice and the default
+  Hertzian,   ///< 3 F_z / (2 pi a^2) sqrt(1 - r^2/a^2)
+  Uniform,    ///< F_z / (pi a^2)
+};
+
+const char* toString(PressureDistribution pressure);
+
+/// Parameters of the brush model of a spherical wheel (Romano et al.), SI units.
+struct BrushParameters
+{
+  double a = 0.05;        ///< contact-patch radius a [m] (or from Hertz: see contactRadiusHertz)
+  double k = 1.023e8;     ///< bristle stiffness per unit area k [N/m^3], q_t = k u_t
+  double F_z = 3000.0;    ///< vertical load [N]
+  double mu = 1.0;        ///< friction coefficient [-]
+  PressureDistribution pressure = PressureDistribution::Parabolic;
+  /// Sect. 4 kinematics: bristle roots move on circles about the tilting centre (eq. 31) and the
+  /// turn coupling chi_psi A_phi u of eq. 32 is kept. Off: Sect. 3, straight paths, chi_psi u
+  /// neglected as the paper does there.
+  bool tilt = false;
+  int resolution = 32;    ///< patch discretisation: paths (steady) or lattice spacings across 2a (transient)
+  double standstill_speed = 1.0e-3;  ///< V_r below which the slip form is not used [m/s]
+
+  /// Throws std::invalid_argument naming the first bad value: a, k > 0; F_z, mu >= 0; all finite;
+  /// 2 <= resolution <= 1024; standstill_speed > 0.
+  void validate() const;
+
+  /// Pressure q_z [N/m^2] at squared distance r2 [m^2] from the patch centre; 0 outside the patch.
+  double qz(double r2) const;
+};
+
+/// Hertz contact radius of a sphere of radius R [m] under load F_z [N] on a flat with effective
+/// modulus E* [Pa]: a = (3 F_z R / (4 E*))^(1/3).
+double contactRadiusHertz(double F_z, double R, double E_star);
+
+}  // namespace sphere_contact_estimator

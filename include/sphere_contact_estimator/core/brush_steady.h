@@ -1,0 +1,40 @@
+#pragma once
+
+// Package
+#include "sphere_contact_estimator/core/brush_model.h"
+
+namespace sphere_contact_estimator
+{
+/// Steady-state bristle field on a discretised patch, with limited friction (Romano et al. Sects. 3, 4, 6).
+///
+/// In the frame where epsilon = (0, 1) the characteristics (bristle paths) are the lines y = const
+/// (eq. 18a) or, with tilt, circles about the tilting centre (0, 1/phi_gamma) (eq. 44a). Along each the
+/// bristle obeys du/dsigma_s = sigma + A_phi x [+ A_phi_psi u with tilt] (eqs. 11, 32), starting
+/// undeformed at the leading edge (eq. 8): without friction this is eq. 23 resp. eq. 51. With friction
+/// the deflection is capped as it goes: where adhesion would need |k u| > mu q_z the bristle slides with
+/// |q| = mu q_z along the rigid sliding field sigma + A_phi x (Sect. 6), and where the bound later
+/// exceeds what adhesion needs it re-adheres from its capped deflection (conventions.md).
+///
+/// Discretisation: `resolution` paths at y = a sin(theta) (or rho = |R_gamma| + a sin(theta)) with
+/// theta at the midpoints of equal intervals, so the path lengths' square-root end behaviour is
+/// smoothed out; `resolution` equal steps along each path, integrated by the exact rotation of the turn
+/// coupling and the midpoint rule for the drive; forces by the trapezoidal rule along paths.
+///
+/// |R_gamma| < a: no steady state on an inner disc (Fig. 2): flagged, zero forces; fall back to the
+/// transient model. Standstill: flagged, zero forces.
+class BrushSteady : public BrushModel
+{
+public:
+  explicit BrushSteady(const BrushParameters& parameters);
+  BrushForces update(const ContactKinematics& kinematics, double dt) override;
+  BrushModelKind kind() const override { return BrushModelKind::Steady; }
+
+  /// The same from slips in the epsilon = (0, 1) frame: sigma, spin phi, and with tilt the tilt and
+  /// turn spins phi_gamma + phi_psi = phi (eq. 13); they are ignored when tilt is off.
+  BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi) const;
+
+  /// Tilt spin below which the paths count as straight: |R_gamma| > 1e9 a.
+  static constexpr double kStraightPathTolerance = 1e-9;
+};
+
+}  // namespace sphere_contact_estimator

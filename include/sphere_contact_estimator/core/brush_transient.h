@@ -1,0 +1,85 @@
+#pragma once
+
+// STL
+#include <cstdint>
+#include <vector>
+
+// Eigen
+#include <Eigen/Core>
+
+// Package
+#include "sphere_contact_estimator/core/brush_model.h"
+
+namespace sphere_contact_estimator
+{
+/// The brush PDE in the time domain (Romano et al. eq. 1 with v_s = 0 where the bristle adheres):
+///   du/dt + (v_t . grad) u = -V_s - A_omega_z x [- A_psi_dot u],   v_t = -V_r [- A_omega_gamma x]
+/// (the bracketed terms with tilt on: the velocity field of eq. 31, where A_omega_gamma = -chi_gamma A_omega_z
+/// turns the roots with the sphere at rate +omega_gamma, and the turn coupling chi_psi A_omega_z u =
+/// A_psi_dot u of eq. 1). Nothing is divided by V_r, so it holds down to
+/// standstill and covers pure spin (Sect. 5, v_t = 0).
+///
+/// Discretisation: the bristles are followed as material points. v_t is a rigid motion (a translation,
+/// or a rotation about the tilting centre), so bristles that start on a square lattice of spacing
+/// h = 2a / resolution stay on one, moved rigidly: advection is exact, with no numerical diffusion and
+/// no stability limit. Each bristle integrates its ODE with the exact rotation of the turn coupling and
+/// the midpoint value of the drive; it enters with u = 0 where it crosses the leading edge (eq. 8; the
+/// crossing time is interpolated within the substep) and is dropped when it leaves. Limited friction caps
+/// it after every substep (FrictionCap). Forces are the lattice sum of k u over the bristles inside the
+/// patch, normalised to the patch area.
+///
+/// update() advances by the caller's dt in substeps that keep each bristle's path within half a lattice
+/// spacing and every rotation below 0.1 rad; at most kMaxSubsteps of them (flagged when that is short).
+class BrushTransient : public BrushModel
+{
+public:
+  explicit BrushTransient(const BrushParameters& parameters);
+
+  BrushForces update(const ContactKinematics& kinematics, double dt) override;
+  void reset() override;
+  BrushModelKind kind() const override { return BrushModelKind::Transient; }
+
+  /// Forces of the current bristle state, without advancing.
+  BrushForces forces() const;
+
+  /// Visits every bristle inside the patch: f(position x [m], deflection u [m], sliding).
+  template <class F>
+  void forEachBristle(F&& f) const
+  {
+    for (int j = 0; j < w_; ++j)
+      for (int i = 0; i < w_; ++i)
+      {
+        const std::size_t p = index(i, j);
+        if (inside_[p])
+          f(position(i, j), u_[p], static_cast<bool>(sliding_[p]));
+      }
+  }
+
+  /// Lattice spacing h [m].
+  double spacing() const { return h_; }
+
+  static constexpr int kMaxSubsteps = 4096;
+
+private:
+  std::size_t index(int i, int j) const { return static_cast<std::size_t>(j) * w_ + i; }
+  Eigen::Vector2d position(int i, int j) const
+  {
+    return o_ + R_ * Eigen::Vector2d((i - c0_) * h_, (j - c0_) * h_);
+  }
+  void substep(const ContactKinematics& kin, double dt);
+  void recentre();
+
+  double h_;                      // lattice spacing
+  int w_;                         // window width in lattice points
+  double c0_;                     // lattice coordinate of the window centre, in spacings
+  Eigen::Matrix2d R_;             // lattice pose: x = o + R l
+  Eigen::Vector2d o_;
+  std::vector<Eigen::Vector2d> u_;     // deflection per lattice point
+  std::vector<std::uint8_t> inside_;   // inside the patch after the last substep
+  std::vector<std::uint8_t> sliding_;  // capped in the last substep
+  // scratch for recentre(), sized once: the hot path does not allocate
+  std::vector<Eigen::Vector2d> u_scratch_;
+  std::vector<std::uint8_t> inside_scratch_, sliding_scratch_;
+};
+
+}  // namespace sphere_contact_estimator

@@ -1,0 +1,208 @@
+#include "cli/brush_commands.h"
+
+// STL
+#include <cmath>
+#include <ostream>
+#include <stdexcept>
+
+// nlohmann
+#include <nlohmann/json.hpp>
+
+// Package
+#include "cli/json_output.h"
+#include "sphere_contact_estimator/core/brush_model.h"
+#include "sphere_contact_estimator/core/brush_steady.h"
+#include "sphere_contact_estimator/core/brush_transient.h"
+#include "sphere_contact_estimator/core/contact_kinematics.h"
+
+namespace sphere_contact_estimator::cli
+{
+namespace
+{
+void requireFinite(double x, const char* flag)
+{
+  if (!std::isfinite(x))
+    throw std::invalid_argument(std::string(flag) + " must be finite");
+}
+
+nlohmann::ordered_json vectorOrNull(const std::optional<Eigen::Vector2d>& v)
+{
+  if (!v || !v->allFinite())
+    return nullptr;
+  return { v->x(), v->y() };
+}
+}  // namespace
+
+CLI::App* addSlipsCommand(CLI::App& app, SlipsOptions& o)
+{
+  CLI::App* sub = app.add_subcommand(
+      "slips", "Slips and spins of a spherical wheel from its kinematics (Romano et al. eqs. 2, 12, 13, 36, 42), "
+               "paper frame (SAE, z down).");
+  sub->add_option("--omega", o.omega, "WX WY WZ: angular velocity of the sphere [rad/s]")->expected(3)->required();
+  sub->add_option("--vc", o.vc, "VX VY: velocity of the contact-patch centre [m/s]")->expected(2)->required();
+  sub->add_option("--rolling-radius", o.rolling_radius, "rolling radius R_r [m]")->required();
+  CLI::Option* turn = sub->add_option("--turn-rate", o.turn_rate, "turning speed psi_dot of the contact frame [rad/s] (default 0)");
+  CLI::Option* tilt = sub->add_option("--tilt-ratio", o.tilt_ratio, "tilt ratio chi_gamma = omega_gamma / omega_z");
+  turn->excludes(tilt);
+  sub->add_option("--standstill-speed", o.standstill_speed, "rolling speed below which slips are undefined [m/s]")
+      ->capture_default_str();
+  return sub;
+}
+
+void runSlipsCommand(const SlipsOptions& o, std::ostream& out)
+{
+  for (double x : o.omega)
+    requireFinite(x, "--omega");
+  for (double x : o.vc)
+    requireFinite(x, "--vc");
+  if (!(std::isfinite(o.rolling_radius) && o.rolling_radius > 0.0))
+    throw std::invalid_argument("--rolling-radius must be finite and > 0 [m]");
+  if (!(std::isfinite(o.standstill_speed) && o.standstill_speed > 0.0))
+    throw std::invalid_argument("--standstill-speed must be finite and > 0 [m/s]");
+  const Eigen::Vector3d omega(o.omega[0], o.omega[1], o.omega[2]);
+  const Eigen::Vector2d vc(o.vc[0], o.vc[1]);
+  ContactKinematics kin;
+  if (o.tilt_ratio)
+  {
+    requireFinite(*o.tilt_ratio, "--tilt-ratio");
+    kin = ContactKinematics::fromWheelWithTiltRatio(omega, vc, o.rolling_radius, *o.tilt_ratio);
+  }
+  else
+  {
+    requireFinite(o.turn_rate.value_or(0.0), "--turn-rate");
+    kin = ContactKinematics::fromWheel(omega, vc, o.rolling_radius, o.turn_rate.value_or(0.0));
+  }
+  const Slips s = computeSlips(kin, o.standstill_speed);
+  const auto slip = [&s](double x) { return s.defined ? number(x) : nlohmann::ordered_json(nullptr); };
+  nlohmann::ordered_json j;
+  j["V_r"] = s.V_r;
+  j["V_r_x"] = kin.V_r.x();
+  j["V_r_y"] = kin.V_r.y();
+  j["V_s_x"] = kin.V_s.x();
+  j["V_s_y"] = kin.V_s.y();
+  j["sigma_x"] = slip(s.sigma.x());
+  j["sigma_y"] = slip(s.sigma.y());
+  j["phi"] = slip(s.phi);
+  j["phi_gamma"] = slip(s.phi_gamma);
+  j["phi_psi"] = slip(s.phi_psi);
+  j["chi_gamma"] = s.chi_gamma ? number(*s.chi_gamma) : nlohmann::ordered_json(nullptr);
+  j["chi_psi"] = s.chi_psi ? number(*s.chi_psi) : nlohmann::ordered_json(nullptr);
+  j["epsilon_x"] = slip(s.epsilon.x());
+  j["epsilon_y"] = slip(s.epsilon.y());
+  j["omega_gamma"] = kin.omegaGamma();
+  j["psi_dot"] = kin.psi_dot;
+  j["tilting_centre"] = vectorOrNull(s.tilting_centre);
+  j["turning_centre"] = vectorOrNull(s.turning_centre);
+  j["valid"] = s.defined;
+  nlohmann::ordered_json warnings = nlohmann::ordered_json::array();
+  if (!s.defined)
+    warnings.push_back("rolling speed V_r below the standstill speed: the slips of eq. 12 divide by V_r and are "
+                       "undefined (null); only the transient brush model describes the contact");
+  if (!s.chi_gamma)
+    warnings.push_back("omega_z = 0: the tilt and turn ratios are undefined (null)");
+  j["warnings"] = warnings;
+  out << j.dump(2) << '\n';
+}
+
+CLI::App* addBrushCommand(CLI::App& app, BrushOptions& o)
+{
+  CLI::App* sub = app.add_subcommand(
+      "brush", "Forces and moment of the brush model of a spherical wheel (Romano et al.) at constant slips, paper "
+               "frame, epsilon = (0, 1).");
+  BrushParameters& p = o.parameters;
+  sub->add_option("--model", o.model, "linear | steady | transient")->capture_default_str();
+  sub->add_option("--sigma-x", o.sigma_x, "longitudinal slip sigma_x")->required();
+  sub->add_option("--sigma-y", o.sigma_y, "lateral slip sigma_y")->required();
+  sub->add_option("--phi", o.phi, "spin phi [1/m]")->required();
+  sub->add_option("--tilt-ratio", o.tilt_ratio, "tilt ratio chi_gamma: phi_gamma = chi_gamma phi (with --tilt)")
+      ->capture_default_str();
+  sub->add_flag("--tilt", p.tilt, "Sect. 4 kinematics: circular bristle paths about the tilting centre and the turn "
+                                  "coupling chi_psi A_phi u (eq. 32)");
+  CLI::Option* a = sub->add_option("--patch-radius", o.patch_radius, "contact-patch radius a [m]");
+  CLI::Option* e = sub->add_option("--contact-modulus", o.contact_modulus,
+                                   "effective modulus E* [Pa]: a from Hertz, (3 F_z R / (4 E*))^(1/3)");
+  sub->add_option("--sphere-radius", o.sphere_radius, "sphere radius R for Hertz [m]");
+  a->excludes(e);
+  sub->add_option("--stiffness", p.k, "bristle stiffness k [N/m^3]")->required();
+  sub->add_option("--load", p.F_z, "vertical load F_z [N]")->required();
+  sub->add_option("--friction", p.mu, "friction coefficient mu")->required();
+  sub->add_option("--resolution", p.resolution, "paths (steady) or lattice spacings (transient) across the patch")
+      ->capture_default_str();
+  sub->add_option("--pressure", o.pressure, "parabolic | hertzian | uniform")->capture_default_str();
+  sub->add_option("--distance", o.distance,
+                  "transient: distance travelled from undeformed at constant slips [m] (default 4a: steady state)");
+  return sub;
+}
+
+void runBrushCommand(const BrushOptions& o, std::ostream& out)
+{
+  const auto kind = parseBrushModelKind(o.model);
+  if (!kind)
+    throw std::invalid_argument("unknown --model '" + o.model + "': use linear, steady or transient");
+  for (const auto& [x, flag] : { std::pair{ o.sigma_x, "--sigma-x" }, { o.sigma_y, "--sigma-y" }, { o.phi, "--phi" },
+                                 { o.tilt_ratio, "--tilt-ratio" } })
+    requireFinite(x, flag);
+  BrushParameters p = o.parameters;
+  if (o.pressure == "parabolic")
+    p.pressure = PressureDistribution::Parabolic;
+  else if (o.pressure == "hertzian")
+    p.pressure = PressureDistribution::Hertzian;
+  else if (o.pressure == "uniform")
+    p.pressure = PressureDistribution::Uniform;
+  else
+    throw std::invalid_argument("unknown --pressure '" + o.pressure + "': use parabolic, hertzian or uniform");
+  if (o.patch_radius)
+    p.a = *o.patch_radius;
+  else if (o.contact_modulus)
+  {
+    if (!o.sphere_radius)
+      throw std::invalid_argument("--contact-modulus needs --sphere-radius");
+    p.a = contactRadiusHertz(p.F_z, *o.sphere_radius, *o.contact_modulus);
+  }
+  else
+    throw std::invalid_argument("give --patch-radius, or --contact-modulus with --sphere-radius");
+  p.validate();
+
+  const Eigen::Vector2d sigma(o.sigma_x, o.sigma_y);
+  const double phi_gamma = o.tilt_ratio * o.phi, phi_psi = o.phi - phi_gamma;
+  const bool inner_disc = p.tilt && std::abs(phi_gamma) * p.a > 1.0;  // |R_gamma| < a
+  BrushModelKind ran = *kind;
+  std::vector<std::string> notes;
+  if (ran == BrushModelKind::Steady && inner_disc)
+  {
+    ran = BrushModelKind::Transient;
+    notes.emplace_back("no steady state for |R_gamma| < a (Fig. 2): fell back to the transient model");
+  }
+  const double distance = o.distance.value_or(inner_disc ? 40.0 * p.a : 4.0 * p.a);
+  if (!(std::isfinite(distance) && distance >= 0.0 && distance <= 1e4 * p.a))
+    throw std::invalid_argument("--distance must be finite, >= 0 and at most 1e4 patch radii [m]");
+
+  const std::unique_ptr<BrushModel> model = makeBrushModel(ran, p);
+  // Constant slips at a rolling speed of 1 m/s along +x: the state after a distance s is the state after
+  // s seconds (eqs. 12-13 make it independent of the speed).
+  const ContactKinematics kin = ContactKinematics::fromSlips(sigma, o.phi, o.tilt_ratio, 1.0);
+  const BrushForces f = model->update(kin, ran == BrushModelKind::Transient ? distance : 0.0);
+
+  nlohmann::ordered_json j;
+  j["model"] = toString(ran);
+  j["Fx"] = number(f.F_x);
+  j["Fy"] = number(f.F_y);
+  j["Mz"] = number(f.M_z);
+  j["sliding_fraction"] = number(f.sliding_fraction);
+  j["max_utilisation"] = number(f.max_utilisation);
+  j["valid"] = f.valid();
+  nlohmann::ordered_json warnings = notes;
+  for (const std::string& w : brush_flags::describe(f.flags))
+    warnings.push_back(w);
+  j["warnings"] = warnings;
+  j["patch_radius"] = p.a;
+  j["tilt"] = p.tilt;
+  j["phi_gamma"] = phi_gamma;
+  j["phi_psi"] = phi_psi;
+  j["resolution"] = p.resolution;
+  if (ran == BrushModelKind::Transient)
+    j["distance"] = distance;
+  out << j.dump(2) << '\n';
+}
+
+}  // namespace sphere_contact_estimator::cli

@@ -1,0 +1,62 @@
+#include "sphere_contact_estimator/core/brush_linear.h"
+
+// STL
+#include <cmath>
+
+// Package
+#include "sphere_contact_estimator/core/rolling_frame.h"
+
+// Boost
+#include <boost/math/constants/constants.hpp>
+
+namespace sphere_contact_estimator
+{
+BrushLinear::BrushLinear(const BrushParameters& parameters) : BrushModel(parameters)
+{
+  const double a = p_.a, k = p_.k;
+  C_sigma_ = 8.0 / 3.0 * k * a * a * a;                    // eq. 62
+  C_phi_ = 3.0 * boost::math::double_constants::pi * a / 32.0 * C_sigma_;             // eq. 62
+  C_Mphi_ = 8.0 / 15.0 * k * a * a * a * a * a;           // derived above, not in the paper
+}
+
+BrushForces BrushLinear::evaluate(const Eigen::Vector2d& sigma, double phi) const
+{
+  BrushForces f;
+  Eigen::Vector2d F = C_sigma_ * sigma + Eigen::Vector2d(0.0, C_phi_ * phi);  // eq. 61a
+  f.M_z = -C_phi_ * sigma.y() + C_Mphi_ * phi;                                // eq. 61b + spin term
+  const double limit = p_.mu * p_.F_z, norm = F.norm();
+  if (norm > limit)
+  {
+    const double scale = norm > 0.0 ? limit / norm : 0.0;
+    F *= scale;
+    f.M_z *= scale;
+    f.flags |= brush_flags::kLinearSaturated;
+    f.sliding_fraction = 1.0;
+    f.max_utilisation = 1.0;
+  }
+  else
+  {
+    f.max_utilisation = limit > 0.0 ? norm / limit : 0.0;  // global |F_t| / (mu F_z): no local bound in this theory
+  }
+  f.F_x = F.x();
+  f.F_y = F.y();
+  return f;
+}
+
+BrushForces BrushLinear::update(const ContactKinematics& kin, double dt)
+{
+  checkInput(kin, dt);
+  const Slips s = computeSlips(kin, p_.standstill_speed);
+  if (!s.defined)
+  {
+    BrushForces f;
+    f.flags |= brush_flags::kStandstill;
+    return f;
+  }
+  const RollingFrame frame(s.epsilon);
+  BrushForces f = evaluate(frame.toRolling(s.sigma), s.phi);
+  frame.forcesToPatch(f);
+  return f;
+}
+
+}  // namespace sphere_contact_estimator

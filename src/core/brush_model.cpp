@@ -1,0 +1,68 @@
+#include "sphere_contact_estimator/core/brush_model.h"
+
+// STL
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+// Package
+#include "sphere_contact_estimator/core/brush_linear.h"
+#include "sphere_contact_estimator/core/brush_steady.h"
+#include "sphere_contact_estimator/core/brush_transient.h"
+
+namespace sphere_contact_estimator
+{
+const char* toString(BrushModelKind kind)
+{
+  switch (kind)
+  {
+    case BrushModelKind::Linear:
+      return "linear";
+    case BrushModelKind::Steady:
+      return "steady";
+    case BrushModelKind::Transient:
+      return "transient";
+  }
+  return "unknown";
+}
+
+std::optional<BrushModelKind> parseBrushModelKind(std::string_view name)
+{
+  for (auto kind : { BrushModelKind::Linear, BrushModelKind::Steady, BrushModelKind::Transient })
+    if (name == toString(kind))
+      return kind;
+  return std::nullopt;
+}
+
+BrushModel::BrushModel(const BrushParameters& parameters) : p_(parameters)
+{
+  p_.validate();
+}
+
+void BrushModel::checkInput(const ContactKinematics& k, double dt)
+{
+  if (!(k.V_r.allFinite() && k.V_s.allFinite() && std::isfinite(k.omega_z) && std::isfinite(k.psi_dot)))
+    throw std::invalid_argument("brush model: contact kinematics must be finite");
+  if (!(std::isfinite(dt) && dt >= 0.0))
+  {
+    std::ostringstream msg;
+    msg << "brush model: time step dt = " << dt << " s must be finite and >= 0";
+    throw std::invalid_argument(msg.str());
+  }
+}
+
+std::unique_ptr<BrushModel> makeBrushModel(BrushModelKind kind, const BrushParameters& parameters)
+{
+  switch (kind)
+  {
+    case BrushModelKind::Linear:
+      return std::make_unique<BrushLinear>(parameters);
+    case BrushModelKind::Steady:
+      return std::make_unique<BrushSteady>(parameters);
+    case BrushModelKind::Transient:
+      return std::make_unique<BrushTransient>(parameters);
+  }
+  throw std::invalid_argument("unknown brush model kind");
+}
+
+}  // namespace sphere_contact_estimator

@@ -1,0 +1,75 @@
+#include "sphere_contact_estimator/core/brush_parameters.h"
+
+// STL
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace sphere_contact_estimator
+{
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+
+void require(bool ok, const char* name, double value, const char* rule)
+{
+  if (ok)
+    return;
+  std::ostringstream msg;
+  msg.precision(17);
+  msg << "invalid brush parameter " << name << " = " << value << ": must be " << rule;
+  throw std::invalid_argument(msg.str());
+}
+}  // namespace
+
+const char* toString(PressureDistribution pressure)
+{
+  switch (pressure)
+  {
+    case PressureDistribution::Parabolic:
+      return "parabolic";
+    case PressureDistribution::Hertzian:
+      return "hertzian";
+    case PressureDistribution::Uniform:
+      return "uniform";
+  }
+  return "unknown";
+}
+
+void BrushParameters::validate() const
+{
+  const auto finite = [](double x) { return std::isfinite(x); };
+  require(finite(a) && a > 0.0 && a <= 1e3, "patch radius a", a, "finite, > 0 and <= 1e3 [m]");
+  require(finite(k) && k > 0.0 && k <= 1e20, "bristle stiffness k", k, "finite, > 0 and <= 1e20 [N/m^3]");
+  require(finite(F_z) && F_z >= 0.0 && F_z <= 1e12, "load F_z", F_z, "finite, >= 0 and <= 1e12 [N]");
+  require(finite(mu) && mu >= 0.0 && mu <= 1e6, "friction mu", mu, "finite, >= 0 and <= 1e6");
+  require(resolution >= 2 && resolution <= 1024, "resolution", resolution, "between 2 and 1024");
+  require(finite(standstill_speed) && standstill_speed > 0.0, "standstill speed", standstill_speed,
+          "finite and > 0 [m/s]");
+}
+
+double BrushParameters::qz(double r2) const
+{
+  const double t = 1.0 - r2 / (a * a);
+  if (t <= 0.0)
+    return 0.0;
+  switch (pressure)
+  {
+    case PressureDistribution::Parabolic:
+      return 2.0 * F_z / (kPi * a * a) * t;
+    case PressureDistribution::Hertzian:
+      return 1.5 * F_z / (kPi * a * a) * std::sqrt(t);
+    case PressureDistribution::Uniform:
+      return F_z / (kPi * a * a);
+  }
+  return 0.0;
+}
+
+double contactRadiusHertz(double F_z, double R, double E_star)
+{
+  if (!(std::isfinite(F_z) && F_z >= 0.0 && std::isfinite(R) && R > 0.0 && std::isfinite(E_star) && E_star > 0.0))
+    throw std::invalid_argument("Hertz contact radius needs F_z >= 0, R > 0 and E* > 0, all finite");
+  return std::cbrt(3.0 * F_z * R / (4.0 * E_star));
+}
+
+}  // namespace sphere_contact_estimator
