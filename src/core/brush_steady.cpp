@@ -67,7 +67,7 @@ BrushForces BrushSteady::evaluate(const Eigen::Vector2d& sigma, double phi, doub
   const auto drive = [&](const Eigen::Vector2d& x) { return Eigen::Vector2d(sigma.x() - phi * x.y(), sigma.y() + phi * x.x()); };
 
   Eigen::Vector2d F = Eigen::Vector2d::Zero();
-  double M_z = 0.0, area = 0.0, sliding_area = 0.0, utilisation = 0.0;
+  double M_z = 0.0, area = 0.0, sliding_area = 0.0, utilisation = 0.0, load = 0.0;
   const double dtheta = pi / n;
   for (int j = 0; j < n; ++j)
   {
@@ -133,14 +133,18 @@ BrushForces BrushSteady::evaluate(const Eigen::Vector2d& sigma, double phi, doub
       const double dA = width * h * (straight ? 1.0 : std::abs(phi_gamma) * (node - centre).norm());
       F += k * u * dA;
       M_z += k * cross(node, u) * dA;
+      load += r.q_z * dA;
       if (r.sliding)
         sliding_area += dA;
       area += dA;
     }
   }
-  out.F_x = F.x();
-  out.F_y = F.y();
-  out.M_z = M_z;
+  // Quadrature weights normalised so that the discrete integral of q_z is F_z (an O(h^2) correction):
+  // every bristle obeys |q| <= mu q_z, so then |F_t| <= mu F_z holds exactly, not just to O(h^2).
+  const double eta = load > 0.0 ? p_.F_z / load : 1.0;
+  out.F_x = eta * F.x();
+  out.F_y = eta * F.y();
+  out.M_z = eta * M_z;
   out.sliding_fraction = area > 0.0 ? sliding_area / area : 0.0;
   out.max_utilisation = utilisation;
   return out;

@@ -187,20 +187,23 @@ BrushForces BrushTransient::forces() const
 {
   BrushForces f;
   Eigen::Vector2d F = Eigen::Vector2d::Zero();
-  double M_z = 0.0, utilisation = 0.0;
+  double M_z = 0.0, utilisation = 0.0, load = 0.0;
   int count = 0, sliding = 0;
-  const double a2 = p_.a * p_.a;
   forEachBristle([&](const Eigen::Vector2d& x, const Eigen::Vector2d& u, bool slides) {
     ++count;
     sliding += slides;
     F += u;
     M_z += x.x() * u.y() - x.y() * u.x();
-    const double bound = p_.mu * p_.qz(x.squaredNorm()) / p_.k;
+    const double q_z = p_.qz(x.squaredNorm());
+    load += q_z;
+    const double bound = p_.mu * q_z / p_.k;
     utilisation = std::max(utilisation, slides ? 1.0 : (bound > 0.0 ? u.norm() / bound : 0.0));
   });
   if (count == 0)
     return f;
-  const double dA = boost::math::double_constants::pi * a2 / count;  // lattice cell, normalised to the patch
+  // Cell weight normalised so that the lattice sum of q_z is F_z: every bristle obeys |q| <= mu q_z, so
+  // |F_t| <= mu F_z then holds exactly. Without load, the patch area over the bristle count.
+  const double dA = load > 0.0 ? p_.F_z / load : boost::math::double_constants::pi * p_.a * p_.a / count;
   f.F_x = p_.k * F.x() * dA;
   f.F_y = p_.k * F.y() * dA;
   f.M_z = p_.k * M_z * dA;

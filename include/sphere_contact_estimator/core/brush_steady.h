@@ -18,7 +18,8 @@ namespace sphere_contact_estimator
 /// Discretisation: `resolution` paths at y = a sin(theta) (or rho = |R_gamma| + a sin(theta)) with
 /// theta at the midpoints of equal intervals, so the path lengths' square-root end behaviour is
 /// smoothed out; `resolution` equal steps along each path, integrated by the exact rotation of the turn
-/// coupling and the midpoint rule for the drive; forces by the trapezoidal rule along paths.
+/// coupling and the midpoint rule for the drive; forces by the midpoint rule along paths, with the
+/// weights normalised so that the discrete integral of q_z is F_z (then |F_t| <= mu F_z exactly).
 ///
 /// |R_gamma| < a: no steady state on an inner disc (Fig. 2): flagged, zero forces; fall back to the
 /// transient model. Standstill: flagged, zero forces.

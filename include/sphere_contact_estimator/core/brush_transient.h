@@ -26,7 +26,8 @@ namespace sphere_contact_estimator
 /// the midpoint value of the drive; it enters with u = 0 where it crosses the leading edge (eq. 8; the
 /// crossing time is interpolated within the substep) and is dropped when it leaves. Limited friction caps
 /// it after every substep (FrictionCap). Forces are the lattice sum of k u over the bristles inside the
-/// patch, normalised to the patch area.
+/// patch, with the cell weight normalised so that the lattice sum of q_z is F_z (then |F_t| <= mu F_z
+/// exactly).
 ///
 /// update() advances by the caller's dt in substeps that keep each bristle's path within half a lattice
 /// spacing and every rotation below 0.1 rad; at most kMaxSubsteps of them (flagged when that is short).

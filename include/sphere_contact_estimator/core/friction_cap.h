@@ -24,6 +24,7 @@ public:
   {
     bool sliding = false;
     double utilisation = 0.0;  ///< |q| / (mu q_z) after capping, in [0, 1]
+    double q_z = 0.0;          ///< pressure at the bristle [N/m^2]
   };
 
   /// Caps the deflection u [m] of the bristle at x [m] in place; w gives the sliding direction.
@@ -35,16 +36,17 @@ public:
       u.setZero();
       return {};
     }
-    const double bound = p_.mu * p_.qz(r2) / p_.k;  // mu q_z / k
+    const double q_z = p_.qz(r2);
+    const double bound = p_.mu * q_z / p_.k;  // mu q_z / k
     const double n2 = u.squaredNorm();
     if (n2 <= bound * bound)
-      return { false, bound > 0.0 ? std::sqrt(n2) / bound : 0.0 };
+      return { false, bound > 0.0 ? std::sqrt(n2) / bound : 0.0, q_z };
     const double wn = w.norm();
     if (wn > 0.0)
       u = w * (bound / wn);
     else  // at the spin centre the sliding direction is undefined (Sect. 5): keep the bristle's own
       u *= bound / std::sqrt(n2);
-    return { true, 1.0 };
+    return { true, 1.0, q_z };
   }
 
 private:

@@ -1,0 +1,226 @@
+#!/usr/bin/env python3
+"""Reproduce Fig. 4 (a)-(c) of Romano et al. 2022 (brush theory of spherical wheels) from the contact_eval CLI.
+
+Steady-state characteristics of a rolling spherical wheel with limited friction (Sect. 6), for several
+lateral slips sigma_y with the longitudinal slip sigma_x swept over [-1, 1]:
+  Fig. 4(a): tangential forces F_x and F_y versus sigma_x;
+  Fig. 4(b): self-aligning moment M_z versus sigma_x;
+  Fig. 4(c): F_y versus F_x, with the friction circle of radius mu F_z.
+Solid lines: the rolling sphere of Sect. 3; dashed lines: the rolling and tilting sphere of Sect. 4
+(contact_eval brush --tilt --tilt-ratio chi_gamma). The paper reports that the two nearly coincide.
+Parameters of the paper: phi = 3.33 1/m, chi_gamma = 0.9, F_z = 3000 N, a = 0.05 m, k = 1.023e8 N/m^3,
+mu = 1, parabolic pressure. The paper does not list its sigma_y values; 0, 0.05, 0.1, 0.2 are used.
+Forces and moment are in the paper frame (SAE, z down) as printed by contact_eval.
+
+Usage: plot_brush_characteristics.py --output DIR [--contact-eval PATH] [--points N] [--resolution N]
+"""
+import argparse
+import concurrent.futures
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+# Fig. 4 of the paper (Sect. 6)
+PAPER = {
+    "phi": 3.33,            # total tilt spin [1/m]
+    "tilt_ratio": 0.9,      # chi_gamma
+    "load": 3000.0,         # F_z [N]
+    "patch_radius": 0.05,   # a [m]
+    "stiffness": 1.023e8,   # k [N/m^3]
+    "friction": 1.0,        # mu
+}
+SIGMA_Y = (0.0, 0.05, 0.1, 0.2)
+
+
+def contact_eval_command(path):
+    if path:
+        return [path]
+    if shutil.which("rosrun"):
+        return ["rosrun", "sphere_contact_estimator", "contact_eval"]
+    sys.exit("contact_eval not found: source the workspace's devel/setup.bash or pass --contact-eval")
+
+
+def brush_args(sigma_x, sigma_y, tilt, resolution, params):
+    args = ["brush", "--model", "steady",
+            "--sigma-x", repr(float(sigma_x)), "--sigma-y", repr(float(sigma_y)),
+            "--phi", repr(params["phi"]),
+            "--patch-radius", repr(params["patch_radius"]), "--stiffness", repr(params["stiffness"]),
+            "--load", repr(params["load"]), "--friction", repr(params["friction"]),
+            "--resolution", str(resolution)]
+    if tilt:
+        args += ["--tilt", "--tilt-ratio", repr(params["tilt_ratio"])]
+    return args
+
+
+def run(cmd, args):
+    try:
+        out = subprocess.run(cmd + args, capture_output=True, text=True)
+    except OSError as err:
+        raise RuntimeError("cannot run %s: %s" % (cmd[0], err))
+    if out.returncode != 0:
+        raise RuntimeError("%s failed (exit %d):\n%s" % (" ".join(cmd + args), out.returncode, out.stderr.strip()))
+    return json.loads(out.stdout)
+
+
+def sweep(cmd, sigma_x, sigma_ys, resolution, params):
+    """{(tilt, sigma_y): {"Fx": array, "Fy": array, "Mz": array}} over sigma_x, CLI calls in parallel."""
+    jobs = [(tilt, sy, i, sx) for tilt in (False, True) for sy in sigma_ys for i, sx in enumerate(sigma_x)]
+    rows = {}
+    with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
+        futures = {pool.submit(run, cmd, brush_args(sx, sy, tilt, resolution, params)): (tilt, sy, i)
+                   for tilt, sy, i, sx in jobs}
+        try:
+            for fut in concurrent.futures.as_completed(futures):
+                rows[futures[fut]] = fut.result()
+        except RuntimeError as err:
+            for f in futures:
+                f.cancel()
+            sys.exit(str(err))
+    curves = {}
+    warnings = set()
+    for tilt in (False, True):
+        for sy in sigma_ys:
+            r = [rows[(tilt, sy, i)] for i in range(len(sigma_x))]
+            curves[(tilt, sy)] = {k: np.array([x[k] for x in r], dtype=float) for k in ("Fx", "Fy", "Mz")}
+            curves[(tilt, sy)]["valid"] = all(x.get("valid", True) for x in r)
+            for x in r:
+                warnings.update(x.get("warnings") or [])
+    return curves, sorted(warnings)
+
+
+def style_legend(ax, sigma_ys, colours, extra=()):
+    """Colour per sigma_y; solid = Sect. 3, dashed = Sect. 4."""
+    handles = [plt.Line2D([], [], color=c, lw=1.5, label="$\\sigma_y$ = %g" % sy) for sy, c in zip(sigma_ys, colours)]
+    handles += [plt.Line2D([], [], color="k", ls="-", label="rolling (Sect. 3)"),
+                plt.Line2D([], [], color="k", ls="--", label="rolling + tilting (Sect. 4)")]
+    handles += list(extra)
+    ax.legend(handles=handles, fontsize=7)
+
+
+def plot_forces(ax_x, ax_y, sigma_x, curves, sigma_ys, colours, mu_fz):
+    for sy, c in zip(sigma_ys, colours):
+        for tilt, ls in ((False, "-"), (True, "--")):
+            ax_x.plot(sigma_x, curves[(tilt, sy)]["Fx"], color=c, ls=ls, lw=1.3)
+            ax_y.plot(sigma_x, curves[(tilt, sy)]["Fy"], color=c, ls=ls, lw=1.3)
+    for ax, name in ((ax_x, "$F_x$ [N]"), (ax_y, "$F_y$ [N]")):
+        for s in (1, -1):
+            ax.axhline(s * mu_fz, color="gray", ls=":", lw=0.8)
+        ax.set_ylabel(name)
+        ax.set_xlim(sigma_x[0], sigma_x[-1])
+        ax.grid(alpha=0.3)
+    ax_y.set_xlabel("$\\sigma_x$ [-]")
+    style_legend(ax_x, sigma_ys, colours,
+                 [plt.Line2D([], [], color="gray", ls=":", lw=0.8, label="$\\pm\\mu F_z$")])
+
+
+def plot_moment(ax, sigma_x, curves, sigma_ys, colours):
+    for sy, c in zip(sigma_ys, colours):
+        for tilt, ls in ((False, "-"), (True, "--")):
+            ax.plot(sigma_x, curves[(tilt, sy)]["Mz"], color=c, ls=ls, lw=1.3)
+    ax.set_xlabel("$\\sigma_x$ [-]")
+    ax.set_ylabel("$M_z$ [N m]")
+    ax.set_xlim(sigma_x[0], sigma_x[-1])
+    ax.grid(alpha=0.3)
+    style_legend(ax, sigma_ys, colours)
+
+
+def plot_circle(ax, curves, sigma_ys, colours, mu_fz):
+    t = np.linspace(0, 2 * np.pi, 361)
+    ax.plot(mu_fz * np.cos(t), mu_fz * np.sin(t), color="gray", ls=":", lw=1.0)
+    for sy, c in zip(sigma_ys, colours):
+        for tilt, ls in ((False, "-"), (True, "--")):
+            ax.plot(curves[(tilt, sy)]["Fx"], curves[(tilt, sy)]["Fy"], color=c, ls=ls, lw=1.3)
+    ax.set_xlabel("$F_x$ [N]")
+    ax.set_ylabel("$F_y$ [N]")
+    ax.set_aspect("equal")
+    lim = 1.1 * mu_fz
+    ax.set_xlim(-lim, lim)
+    ax.set_ylim(-lim, lim)
+    ax.grid(alpha=0.3)
+    style_legend(ax, sigma_ys, colours,
+                 [plt.Line2D([], [], color="gray", ls=":", label="friction circle $\\mu F_z$")])
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--output", required=True, help="directory for the PNG files")
+    ap.add_argument("--contact-eval", default=None, help="path to the contact_eval executable")
+    ap.add_argument("--points", type=int, default=81, help="number of sigma_x values in [-1, 1]")
+    ap.add_argument("--resolution", type=int, default=32, help="contact_eval --resolution (steady model)")
+    a = ap.parse_args()
+    if a.points < 2:
+        ap.error("--points must be at least 2")
+
+    cmd = contact_eval_command(a.contact_eval)
+    os.makedirs(a.output, exist_ok=True)
+    params = dict(PAPER)
+    mu_fz = params["friction"] * params["load"]
+    sigma_x = np.linspace(-1.0, 1.0, a.points)
+    sigma_ys = SIGMA_Y
+    colours = ["C%d" % i for i in range(len(sigma_ys))]
+
+    curves, warnings = sweep(cmd, sigma_x, sigma_ys, a.resolution, params)
+    subtitle = "$\\varphi$ = %g 1/m, $\\chi_\\gamma$ = %g, $F_z$ = %g N, a = %g m, $\\mu$ = %g" % (
+        params["phi"], params["tilt_ratio"], params["load"], params["patch_radius"], params["friction"])
+
+    # Fig. 4(a): F_x and F_y versus sigma_x
+    fig, (ax_x, ax_y) = plt.subplots(2, 1, figsize=(6.5, 7), sharex=True)
+    plot_forces(ax_x, ax_y, sigma_x, curves, sigma_ys, colours, mu_fz)
+    ax_x.set_title("Fig. 4(a): tangential forces vs longitudinal slip\n" + subtitle, fontsize=10)
+    fig.tight_layout()
+    fig_a = os.path.join(a.output, "fig4a_forces.png")
+    fig.savefig(fig_a, dpi=150)
+    plt.close(fig)
+
+    # Fig. 4(b): M_z versus sigma_x
+    fig, ax = plt.subplots(figsize=(6.5, 4.5))
+    plot_moment(ax, sigma_x, curves, sigma_ys, colours)
+    ax.set_title("Fig. 4(b): self-aligning moment vs longitudinal slip\n" + subtitle, fontsize=10)
+    fig.tight_layout()
+    fig_b = os.path.join(a.output, "fig4b_moment.png")
+    fig.savefig(fig_b, dpi=150)
+    plt.close(fig)
+
+    # Fig. 4(c): F_y versus F_x, friction circle
+    fig, ax = plt.subplots(figsize=(6, 6))
+    plot_circle(ax, curves, sigma_ys, colours, mu_fz)
+    ax.set_title("Fig. 4(c): friction circle\n" + subtitle, fontsize=10)
+    fig.tight_layout()
+    fig_c = os.path.join(a.output, "fig4c_friction_circle.png")
+    fig.savefig(fig_c, dpi=150)
+    plt.close(fig)
+
+    # Summary
+    utilisation = max(float(np.max(np.hypot(c["Fx"], c["Fy"]))) for c in curves.values()) / mu_fz
+    diff = {}
+    for key in ("Fx", "Fy"):
+        diff[key] = max(float(np.max(np.abs(curves[(True, sy)][key] - curves[(False, sy)][key])))
+                        for sy in sigma_ys) / mu_fz
+    diff_mz = max(float(np.max(np.abs(curves[(True, sy)]["Mz"] - curves[(False, sy)]["Mz"]))) for sy in sigma_ys)
+    mz_max = max(float(np.max(np.abs(c["Mz"]))) for c in curves.values())
+
+    print("Fig. 4 of Romano et al. 2022: %d sigma_x points x %d sigma_y x 2 models, resolution %d"
+          % (a.points, len(sigma_ys), a.resolution))
+    for path in (fig_a, fig_b, fig_c):
+        print("  wrote " + path)
+    print("  largest |F_t| / (mu F_z) = %.6f%s" % (utilisation, "" if utilisation <= 1 + 1e-6 else "  (EXCEEDS 1)"))
+    print("  largest |tilt - no tilt| / (mu F_z): F_x %.4g, F_y %.4g; M_z %.4g N m (max |M_z| %.4g N m)"
+          % (diff["Fx"], diff["Fy"], diff_mz, mz_max))
+    invalid = [(t, sy) for (t, sy), c in curves.items() if not c["valid"]]
+    if invalid:
+        print("  curves with invalid points: " + ", ".join(
+            "%s sigma_y=%g" % ("tilt" if t else "no tilt", sy) for t, sy in invalid))
+    if warnings:
+        print("  contact_eval warnings: " + "; ".join(warnings))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,57 @@
+#pragma once
+
+// STL
+#include <cmath>
+
+// Eigen
+#include <Eigen/Core>
+
+// Package
+#include "sphere_contact_estimator/core/brush_closed_form.h"
+#include "sphere_contact_estimator/core/brush_forces.h"
+#include "sphere_contact_estimator/core/brush_parameters.h"
+
+namespace sphere_contact_estimator::test
+{
+/// The paper's Fig. 4 set: F_z = 3000 N, a = 0.05 m, k = 1.023e8 N/m^3, mu = 1, parabolic pressure.
+inline BrushParameters figure4Parameters(bool tilt = false, int resolution = 32)
+{
+  BrushParameters p;
+  p.a = 0.05;
+  p.k = 1.023e8;
+  p.F_z = 3000.0;
+  p.mu = 1.0;
+  p.tilt = tilt;
+  p.resolution = resolution;
+  return p;
+}
+
+/// Forces of a deflection field u(x) by a fine midpoint rule in polar coordinates (an independent
+/// quadrature for the closed-form fields).
+template <class Field>
+BrushForces integrateField(const Field& u, double a, double k, int n = 400)
+{
+  BrushForces f;
+  const double dr = a / n, dt = 2.0 * M_PI / (4 * n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < 4 * n; ++j)
+    {
+      const double r = (i + 0.5) * dr, t = (j + 0.5) * dt;
+      const Eigen::Vector2d x(r * std::cos(t), r * std::sin(t));
+      const Eigen::Vector2d q = k * u(x);
+      const double dA = r * dr * dt;
+      f.F_x += q.x() * dA;
+      f.F_y += q.y() * dA;
+      f.M_z += (x.x() * q.y() - x.y() * q.x()) * dA;
+    }
+  return f;
+}
+
+/// Largest difference of forces and moment (moment over a) relative to mu F_z.
+inline double forceDistance(const BrushForces& a, const BrushForces& b, const BrushParameters& p)
+{
+  const double scale = p.mu * p.F_z;
+  return std::max({ std::abs(a.F_x - b.F_x), std::abs(a.F_y - b.F_y), std::abs(a.M_z - b.M_z) / p.a }) / scale;
+}
+
+}  // namespace sphere_contact_estimator::test

@@ -1,0 +1,214 @@
+// The transient model: against the closed-form transients (eqs. 28, 55), its steady state against the
+// steady model, pure spin (Sect. 5), convergence, and how it is stepped.
+
+// STL
+#include <cmath>
+#include <vector>
+
+// GTest
+#include <gtest/gtest.h>
+
+// Package
+#include "brush_test_support.h"
+#include "sphere_contact_estimator/core/brush_steady.h"
+#include "sphere_contact_estimator/core/brush_transient.h"
+
+namespace sphere_contact_estimator
+{
+namespace
+{
+using test::figure4Parameters;
+using test::forceDistance;
+namespace cf = brush_closed_form;
+
+// Largest |u - oracle| over the bristles, relative to the largest |oracle|. Bristles where the oracle
+// itself breaks the friction bound (even a huge mu caps within ~1e-9 a of the edge, where q_z -> 0)
+// are outside the vanishing-sliding oracle's validity and skipped.
+template <class Oracle>
+double fieldError(const BrushTransient& model, Oracle oracle)
+{
+  const BrushParameters& p = model.parameters();
+  double error = 0.0, scale = 0.0;
+  model.forEachBristle([&](const Eigen::Vector2d& x, const Eigen::Vector2d& u, bool) {
+    const Eigen::Vector2d o = oracle(x);
+    if (p.k * o.norm() > p.mu * p.qz(x.squaredNorm()))
+      return;
+    error = std::max(error, (u - o).norm());
+    scale = std::max(scale, o.norm());
+  });
+  return error / scale;
+}
+
+TEST(BrushTransient, MatchesEqs28And55)
+{
+  // Vanishing sliding, constant slips, from undeformed: the bristle field at every travelled distance,
+  // in the transient region (eq. 28 / 55) and behind the travelling edge (eq. 23 / 51).
+  const Eigen::Vector2d sigma(0.01, -0.02);
+  const double phi = 3.33, chi = 0.9;
+  for (bool tilt : { false, true })
+  {
+    BrushParameters p = figure4Parameters(tilt, 48);
+    p.mu = 1e6;
+    BrushTransient model(p);
+    const ContactKinematics k = ContactKinematics::fromSlips(sigma, phi, chi, 2.0);  // V_r = 2 m/s
+    double s = 0.0;
+    for (double ds : { 0.01, 0.02, 0.03, 0.05, 0.2 })
+    {
+      model.update(k, ds / 2.0);
+      s += ds;
+      const double e = fieldError(model, [&](const Eigen::Vector2d& x) {
+        return tilt ? cf::transientTilting(x, s, p.a, sigma, chi * phi, (1 - chi) * phi)
+                    : cf::transientRolling(x, s, p.a, sigma, phi);
+      });
+      EXPECT_LT(e, 2e-3) << "tilt " << tilt << " s = " << s;
+    }
+  }
+}
+
+TEST(BrushTransient, ReachesTheSteadyModel)
+{
+  // Constant inputs with friction: after the bristles have crossed the patch the transient state is the
+  // steady one. Both are discretisations; they meet as the resolution grows.
+  for (bool tilt : { false, true })
+    for (const auto& [sx, sy, phi] : { std::tuple{ 0.05, 0.02, 3.33 }, { -0.2, 0.1, 3.33 }, { 0.0, 0.0, 10.0 } })
+    {
+      std::vector<double> d;
+      for (int n : { 16, 64 })
+      {
+        const BrushParameters p = figure4Parameters(tilt, n);
+        BrushTransient transient(p);
+        const BrushForces t = transient.update(ContactKinematics::fromSlips({ sx, sy }, phi, 0.9, 1.0), 4.0 * p.a);
+        const BrushForces s = BrushSteady(figure4Parameters(tilt, 4 * n)).evaluate({ sx, sy }, phi, 0.9 * phi, 0.1 * phi);
+        d.push_back(forceDistance(t, s, p));
+      }
+      EXPECT_LT(d[1], std::max(0.5 * d[0], 1e-3)) << "tilt " << tilt << " sigma_x " << sx;
+      EXPECT_LT(d[1], 0.01) << "tilt " << tilt << " sigma_x " << sx;  // 1 % of mu F_z at resolution 64
+    }
+}
+
+TEST(BrushTransient, ConvergesWithResolution)
+{
+  // Observed order of the steady state with partial sliding against a fine run.
+  const Eigen::Vector2d sigma(0.05, 0.02);
+  const auto run = [&](int n) {
+    BrushTransient m(figure4Parameters(false, n));
+    return m.update(ContactKinematics::fromSlips(sigma, 3.33, 1.0, 1.0), 0.2);
+  };
+  const BrushParameters p = figure4Parameters();
+  const BrushForces ref = BrushSteady(figure4Parameters(false, 1024)).evaluate(sigma, 3.33, 0.0, 0.0);
+  const double e16 = forceDistance(run(16), ref, p), e32 = forceDistance(run(32), ref, p),
+               e64 = forceDistance(run(64), ref, p);
+  const double q = std::log2(e16 / e64) / 2.0;
+  std::printf("transient, partial sliding: errors %.2e %.2e %.2e of mu F_z, observed order %.2f\n", e16, e32, e64, q);
+  EXPECT_GT(q, 0.8);
+  EXPECT_LT(e64, 0.01);
+}
+
+TEST(BrushTransient, PureSpinSect5)
+{
+  // V_r = 0, spinning at psi_dot about the patch centre with a small sliding velocity.
+  const double psi_dot = 4.0;
+  ContactKinematics k;
+  k.V_s = Eigen::Vector2d(0.002, -0.001);
+  k.omega_z = psi_dot;
+  k.psi_dot = psi_dot;  // pure turning: chi_psi = 1
+  const Eigen::Vector2d sigma = -k.V_s / std::abs(psi_dot);
+  const double phi_psi = -psi_dot / std::abs(psi_dot);
+
+  // With the turn coupling (Sect. 4 formulation) and vanishing sliding: eq. 59, bounded.
+  BrushParameters p = figure4Parameters(true, 32);
+  p.mu = 1e6;
+  BrushTransient coupled(p);
+  for (int i = 1; i <= 8; ++i)
+  {
+    coupled.update(k, 0.4);
+    const double psi = psi_dot * 0.4 * i;
+    EXPECT_LT(fieldError(coupled, [&](const Eigen::Vector2d& x) { return cf::spinCoupled(x, psi, sigma, phi_psi); }),
+              1e-3) << "psi = " << psi;
+  }
+  // Without it (Sect. 3 formulation): eq. 60, growing linearly with the turn angle.
+  p.tilt = false;
+  BrushTransient uncoupled(p);
+  double first = 0.0;
+  for (int i = 1; i <= 4; ++i)
+  {
+    const BrushForces f = uncoupled.update(k, 1.0);
+    const double psi = psi_dot * i;
+    EXPECT_LT(fieldError(uncoupled, [&](const Eigen::Vector2d& x) { return cf::spinUncoupled(x, psi, sigma, phi_psi); }),
+              1e-9) << "psi = " << psi;
+    if (i == 1)
+      first = f.M_z;
+    EXPECT_NEAR(f.M_z, i * first, 1e-9 * i * std::abs(first));  // grows in proportion to psi, without bound
+  }
+  // With limited friction both stay bounded: the moment settles and never exceeds the full-sliding one.
+  for (bool tilt : { false, true })
+  {
+    BrushTransient limited(figure4Parameters(tilt, 32));
+    std::vector<double> M;
+    for (int i = 0; i < 40; ++i)
+      M.push_back(limited.update(k, 0.25).M_z);
+    // |M_z| <= mu integral q_z r dA = mu F_z 8a/15 for the parabolic pressure (to the lattice quadrature)
+    for (double m : M)
+      EXPECT_LE(std::abs(m), 3000.0 * 8.0 * 0.05 / 15.0 * (1 + 1e-3)) << "tilt " << tilt;
+    for (std::size_t i = M.size() - 10; i < M.size(); ++i)  // settled: the last 2.5 s change by < 0.1 %
+      EXPECT_NEAR(M[i], M.back(), 1e-3 * std::abs(M.back())) << "tilt " << tilt;
+    EXPECT_GT(limited.forces().sliding_fraction, 0.5);
+  }
+}
+
+TEST(BrushTransient, StepSizeDoesNotMatter)
+{
+  // Many small updates or one large one: the same state (substeps adapt to the motion).
+  const ContactKinematics k = ContactKinematics::fromSlips({ 0.05, 0.02 }, 3.33, 0.9, 1.5);
+  for (bool tilt : { false, true })
+  {
+    const BrushParameters p = figure4Parameters(tilt, 32);
+    BrushTransient one(p), many(p);
+    const BrushForces a = one.update(k, 0.06);
+    BrushForces b;
+    for (int i = 0; i < 600; ++i)
+      b = many.update(k, 1e-4);
+    EXPECT_LT(forceDistance(a, b, p), 5e-3) << "tilt " << tilt;
+  }
+}
+
+TEST(BrushTransient, ContinuousThroughStandstillAndResettable)
+{
+  const BrushParameters p = figure4Parameters(true, 32);
+  BrushTransient model(p);
+  // decelerate to rest and start again: forces change smoothly, nothing is divided by V_r
+  BrushForces last = model.update(ContactKinematics::fromSlips({ 0.05, 0.0 }, 1.0, 0.9, 1.0), 0.2);
+  for (double v = 1.0; v >= -1e-12; v -= 0.01)
+  {
+    ContactKinematics k = ContactKinematics::fromSlips({ 0.05, 0.0 }, 1.0, 0.9, 1.0);
+    k.V_r *= std::max(v, 0.0);
+    k.V_s *= std::max(v, 0.0);
+    k.omega_z *= std::max(v, 0.0);
+    k.psi_dot *= std::max(v, 0.0);
+    const BrushForces f = model.update(k, 0.002);
+    EXPECT_TRUE(std::isfinite(f.F_x) && std::isfinite(f.F_y) && std::isfinite(f.M_z));
+    EXPECT_LT(forceDistance(f, last, p), 0.05) << "v " << v;
+    last = f;
+  }
+  model.reset();
+  const BrushForces zero = model.forces();
+  EXPECT_EQ(zero.F_x, 0.0);
+  EXPECT_EQ(zero.M_z, 0.0);
+}
+
+TEST(BrushTransient, BadStepsAreRejected)
+{
+  BrushTransient model(figure4Parameters());
+  EXPECT_THROW(model.update(ContactKinematics{}, -1.0), std::invalid_argument);
+  EXPECT_THROW(model.update(ContactKinematics{}, NAN), std::invalid_argument);
+  ContactKinematics k;
+  k.V_s.x() = INFINITY;
+  EXPECT_THROW(model.update(k, 0.01), std::invalid_argument);
+  // a huge step is bounded in work and flagged
+  const BrushForces f = model.update(ContactKinematics::fromSlips({ 0.1, 0.0 }, 0.0, 1.0, 10.0), 1e3);
+  EXPECT_TRUE(f.flags & brush_flags::kSubstepsTruncated);
+  EXPECT_TRUE(std::isfinite(f.F_x));
+}
+
+}  // namespace
+}  // namespace sphere_contact_estimator
