@@ -154,7 +154,7 @@ def main():
     ap.add_argument("--output", required=True, help="directory for the PNG files")
     ap.add_argument("--contact-eval", default=None, help="path to the contact_eval executable")
     ap.add_argument("--points", type=int, default=81, help="number of sigma_x values in [-1, 1]")
-    ap.add_argument("--resolution", type=int, default=32, help="contact_eval --resolution (steady model)")
+    ap.add_argument("--resolution", type=int, default=64, help="contact_eval --resolution (steady model)")
     a = ap.parse_args()
     if a.points < 2:
         ap.error("--points must be at least 2")

@@ -159,3 +159,113 @@ TEST(ContactEval, BadInputFailsWithAMessage)
 
 }  // namespace
 }  // namespace sphere_contact_estimator
+
+namespace sphere_contact_estimator
+{
+namespace
+{
+const std::string kFig4 = "--patch-radius 0.05 --stiffness 1.023e8 --load 3000 --friction 1 ";
+
+TEST(ContactEvalSlips, PrintsEqs12And13)
+{
+  const Outcome r = contactEval("slips --omega 0 -10 2 --vc 1.1 -0.05 --rolling-radius 0.1 --turn-rate 0.5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : { "V_r", "sigma_x", "sigma_y", "phi", "phi_gamma", "phi_psi", "chi_gamma", "epsilon_x",
+                           "epsilon_y", "valid", "warnings" })
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_NEAR(j["V_r"].get<double>(), 1.0, 1e-15);
+  EXPECT_NEAR(j["sigma_x"].get<double>(), -0.1, 1e-12);
+  EXPECT_NEAR(j["sigma_y"].get<double>(), 0.05, 1e-12);
+  EXPECT_NEAR(j["phi"].get<double>(), -2.0, 1e-12);
+  EXPECT_NEAR(j["phi_psi"].get<double>(), -0.5, 1e-12);
+  EXPECT_NEAR(j["phi_gamma"].get<double>(), -1.5, 1e-12);
+  EXPECT_NEAR(j["chi_gamma"].get<double>(), 0.75, 1e-12);
+  EXPECT_NEAR(j["epsilon_y"].get<double>(), 1.0, 1e-15);
+  EXPECT_EQ(j["valid"], true);
+  // the tilt ratio instead of the turn rate
+  const auto t = nlohmann::json::parse(contactEval("slips --omega 0 -10 2 --vc 1 0 --rolling-radius 0.1 --tilt-ratio 0.9").out);
+  EXPECT_NEAR(t["phi_gamma"].get<double>(), -1.8, 1e-12);
+}
+
+TEST(ContactEvalSlips, StandstillGivesNullsNotInfinities)
+{
+  const Outcome r = contactEval("slips --omega 0 0 3 --vc 0.01 0 --rolling-radius 0.1");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["valid"], false);
+  EXPECT_TRUE(j["sigma_x"].is_null());
+  EXPECT_TRUE(j["phi"].is_null());
+  EXPECT_FALSE(j["warnings"].empty());
+}
+
+TEST(ContactEvalBrush, ModelsAgreeWhereTheyShould)
+{
+  // small slips: the three models give the linear theory
+  const std::string small = "--sigma-x 0.0001 --sigma-y 0.0002 --phi 0.002 " + kFig4 + "--resolution 64 ";
+  const auto lin = nlohmann::json::parse(contactEval("brush --model linear " + small).out);
+  const auto st = nlohmann::json::parse(contactEval("brush --model steady " + small).out);
+  const auto tr = nlohmann::json::parse(contactEval("brush --model transient " + small).out);
+  for (const char* key : { "Fx", "Fy", "Mz", "sliding_fraction", "max_utilisation", "valid", "warnings" })
+    EXPECT_TRUE(st.contains(key)) << key;
+  for (const auto* j : { &st, &tr })
+  {
+    EXPECT_NEAR((*j)["Fx"].get<double>(), lin["Fx"].get<double>(), 0.01 * std::abs(lin["Fx"].get<double>()));
+    EXPECT_NEAR((*j)["Fy"].get<double>(), lin["Fy"].get<double>(), 0.01 * std::abs(lin["Fy"].get<double>()));
+  }
+  // partial sliding, spin and tilt: transient at steady state against steady
+  const std::string tilt = "--sigma-x 0.05 --sigma-y 0.02 --phi 3.33 --tilt --tilt-ratio 0.9 " + kFig4 + "--resolution 64 ";
+  const auto a = nlohmann::json::parse(contactEval("brush --model steady " + tilt).out);
+  const auto b = nlohmann::json::parse(contactEval("brush --model transient " + tilt).out);
+  EXPECT_NEAR(a["Fx"].get<double>(), b["Fx"].get<double>(), 30.0);
+  EXPECT_NEAR(a["Fy"].get<double>(), b["Fy"].get<double>(), 30.0);
+  EXPECT_GT(a["sliding_fraction"].get<double>(), 0.1);
+  EXPECT_LT(a["sliding_fraction"].get<double>(), 0.9);
+  EXPECT_EQ(b["distance"].get<double>(), 0.2);  // 4a by default
+}
+
+TEST(ContactEvalBrush, InnerDiscFallsBackToTransient)
+{
+  const Outcome r = contactEval("brush --model steady --sigma-x 0 --sigma-y 0 --phi 40 --tilt " + kFig4);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["model"], "transient");
+  EXPECT_FALSE(j["warnings"].empty());
+  EXPECT_LE(std::hypot(j["Fx"].get<double>(), j["Fy"].get<double>()), 3000.0 * (1 + 1e-9));
+}
+
+TEST(ContactEvalBrush, HertzPatchRadius)
+{
+  // a = (3 F_z R / (4 E*))^(1/3)
+  const auto j = nlohmann::json::parse(
+      contactEval("brush --model linear --sigma-x 0 --sigma-y 0 --phi 0 --contact-modulus 1e7 --sphere-radius 0.2 "
+                  "--stiffness 1e8 --load 3000 --friction 1").out);
+  EXPECT_NEAR(j["patch_radius"].get<double>(), std::cbrt(3.0 * 3000 * 0.2 / (4.0 * 1e7)), 1e-15);
+}
+
+TEST(ContactEvalBrush, BadInputFailsWithAMessage)
+{
+  for (const std::string& args : std::vector<std::string>{
+           "brush --model fancy --sigma-x 0 --sigma-y 0 --phi 0 " + kFig4,
+           "brush --sigma-x nan --sigma-y 0 --phi 0 " + kFig4,
+           "brush --sigma-x 0 --sigma-y 0 --phi 0 --stiffness 1e8 --load 3000 --friction 1",  // no a
+           "brush --sigma-x 0 --sigma-y 0 --phi 0 --patch-radius -1 --stiffness 1e8 --load 3000 --friction 1",
+           "brush --sigma-x 0 --sigma-y 0 --phi 0 --patch-radius 0.05 --stiffness 1e8 --load 3000 --friction -1",
+           "brush --sigma-x 0 --sigma-y 0 --phi 0 " + kFig4 + "--resolution 1",
+           "brush --sigma-x 0 --sigma-y 0 --phi 0 " + kFig4 + "--model transient --distance -1",
+           "brush --sigma-x 0 --sigma-y 0 --phi 0 --contact-modulus 1e7 --stiffness 1e8 --load 1 --friction 1",
+           "slips --omega 0 0 --vc 0 0 --rolling-radius 0.1",
+           "slips --omega 0 0 1 --vc 0 0 --rolling-radius 0",
+           "slips --omega 0 0 1 --vc 0 inf --rolling-radius 0.1",
+           "slips --omega 0 0 1 --vc 0 0 --rolling-radius 0.1 --turn-rate 1 --tilt-ratio 0.5",
+       })
+  {
+    const Outcome r = contactEval(args);
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_FALSE(r.err.empty()) << args;
+    EXPECT_TRUE(r.out.empty()) << args << " printed " << r.out;
+  }
+}
+
+}  // namespace
+}  // namespace sphere_contact_estimator

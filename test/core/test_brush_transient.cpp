@@ -196,6 +196,21 @@ TEST(BrushTransient, ContinuousThroughStandstillAndResettable)
   EXPECT_EQ(zero.M_z, 0.0);
 }
 
+TEST(BrushTransient, TiltingRadiusInsideThePatch)
+{
+  // |R_gamma| < a: bristles on circles inside the patch never leave it (Fig. 2). No steady state, but the
+  // transient model stays defined, bounded by friction and the friction limit.
+  const BrushParameters p = figure4Parameters(true, 32);
+  BrushTransient model(p);
+  const ContactKinematics k = ContactKinematics::fromSlips({ 0.02, 0.0 }, 40.0, 1.0, 1.0);  // R_gamma = a / 2
+  for (int i = 0; i < 50; ++i)
+  {
+    const BrushForces f = model.update(k, 0.01);
+    EXPECT_TRUE(std::isfinite(f.F_x) && std::isfinite(f.F_y) && std::isfinite(f.M_z));
+    EXPECT_LE(std::hypot(f.F_x, f.F_y), p.mu * p.F_z * (1 + 1e-12));
+  }
+}
+
 TEST(BrushTransient, BadStepsAreRejected)
 {
   BrushTransient model(figure4Parameters());
