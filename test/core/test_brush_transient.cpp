@@ -3,6 +3,7 @@
 
 // STL
 #include <cmath>
+#include <random>
 #include <vector>
 
 // GTest
@@ -194,6 +195,39 @@ TEST(BrushTransient, ContinuousThroughStandstillAndResettable)
   const BrushForces zero = model.forces();
   EXPECT_EQ(zero.F_x, 0.0);
   EXPECT_EQ(zero.M_z, 0.0);
+}
+
+TEST(BrushTransient, MirrorSymmetryAndFrictionLimitAlongARandomRun)
+{
+  // Random kinematics changing every 5 ms, through standstill and reversal: |F_t| <= mu F_z at every
+  // step, and the mirrored run (y -> -y: V_y, V_s,y, omega_z, psi_dot change sign) mirrors the forces.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (bool tilt : { false, true })
+  {
+    const BrushParameters p = figure4Parameters(tilt, 24);
+    BrushTransient model(p), mirror(p);
+    for (int i = 0; i < 200; ++i)
+    {
+      ContactKinematics k;
+      k.V_r = Eigen::Vector2d(2.0 * u(rng), i % 20 == 0 ? 0.0 : 0.3 * u(rng));
+      if (i % 17 == 0)
+        k.V_r.setZero();
+      k.V_s = Eigen::Vector2d(0.2 * u(rng), 0.2 * u(rng));
+      k.omega_z = 10.0 * u(rng);
+      k.psi_dot = 0.5 * (1.0 + u(rng)) * k.omega_z;
+      ContactKinematics m = k;
+      m.V_r.y() = -k.V_r.y();
+      m.V_s.y() = -k.V_s.y();
+      m.omega_z = -k.omega_z;
+      m.psi_dot = -k.psi_dot;
+      const BrushForces f = model.update(k, 0.005), g = mirror.update(m, 0.005);
+      EXPECT_LE(std::hypot(f.F_x, f.F_y), p.mu * p.F_z * (1 + 1e-12)) << i;
+      EXPECT_NEAR(f.F_x, g.F_x, 1e-9 * p.F_z) << i;
+      EXPECT_NEAR(f.F_y, -g.F_y, 1e-9 * p.F_z) << i;
+      EXPECT_NEAR(f.M_z, -g.M_z, 1e-9 * p.F_z * p.a) << i;
+    }
+  }
 }
 
 TEST(BrushTransient, TiltingRadiusInsideThePatch)
