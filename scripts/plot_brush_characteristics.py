@@ -16,10 +16,7 @@ Usage: plot_brush_characteristics.py --output DIR [--contact-eval PATH] [--point
 """
 import argparse
 import concurrent.futures
-import json
 import os
-import shutil
-import subprocess
 import sys
 
 import matplotlib
@@ -27,6 +24,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # also when run through rosrun's wrapper
+from contact_eval_tool import contact_eval_command, run_json  # noqa: E402
 
 # Fig. 4 of the paper (Sect. 6)
 PAPER = {
@@ -38,14 +38,6 @@ PAPER = {
     "friction": 1.0,        # mu
 }
 SIGMA_Y = (0.0, 0.05, 0.1, 0.2)
-
-
-def contact_eval_command(path):
-    if path:
-        return [path]
-    if shutil.which("rosrun"):
-        return ["rosrun", "sphere_contact_estimator", "contact_eval"]
-    sys.exit("contact_eval not found: source the workspace's devel/setup.bash or pass --contact-eval")
 
 
 def brush_args(sigma_x, sigma_y, tilt, resolution, params):
@@ -60,22 +52,12 @@ def brush_args(sigma_x, sigma_y, tilt, resolution, params):
     return args
 
 
-def run(cmd, args):
-    try:
-        out = subprocess.run(cmd + args, capture_output=True, text=True)
-    except OSError as err:
-        raise RuntimeError("cannot run %s: %s" % (cmd[0], err))
-    if out.returncode != 0:
-        raise RuntimeError("%s failed (exit %d):\n%s" % (" ".join(cmd + args), out.returncode, out.stderr.strip()))
-    return json.loads(out.stdout)
-
-
 def sweep(cmd, sigma_x, sigma_ys, resolution, params):
     """{(tilt, sigma_y): {"Fx": array, "Fy": array, "Mz": array}} over sigma_x, CLI calls in parallel."""
     jobs = [(tilt, sy, i, sx) for tilt in (False, True) for sy in sigma_ys for i, sx in enumerate(sigma_x)]
     rows = {}
     with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
-        futures = {pool.submit(run, cmd, brush_args(sx, sy, tilt, resolution, params)): (tilt, sy, i)
+        futures = {pool.submit(run_json, cmd, brush_args(sx, sy, tilt, resolution, params)): (tilt, sy, i)
                    for tilt, sy, i, sx in jobs}
         try:
             for fut in concurrent.futures.as_completed(futures):
@@ -149,6 +131,15 @@ def plot_circle(ax, curves, sigma_ys, colours, mu_fz):
                  [plt.Line2D([], [], color="gray", ls=":", label="friction circle $\\mu F_z$")])
 
 
+def save(fig, directory, name):
+    """Writes fig as directory/name (PNG, 150 dpi), closes it and returns the path."""
+    fig.tight_layout()
+    path = os.path.join(directory, name)
+    fig.savefig(path, dpi=150)
+    plt.close(fig)
+    return path
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--output", required=True, help="directory for the PNG files")
@@ -175,28 +166,19 @@ def main():
     fig, (ax_x, ax_y) = plt.subplots(2, 1, figsize=(6.5, 7), sharex=True)
     plot_forces(ax_x, ax_y, sigma_x, curves, sigma_ys, colours, mu_fz)
     ax_x.set_title("Fig. 4(a): tangential forces vs longitudinal slip\n" + subtitle, fontsize=10)
-    fig.tight_layout()
-    fig_a = os.path.join(a.output, "fig4a_forces.png")
-    fig.savefig(fig_a, dpi=150)
-    plt.close(fig)
+    fig_a = save(fig, a.output, "fig4a_forces.png")
 
     # Fig. 4(b): M_z versus sigma_x
     fig, ax = plt.subplots(figsize=(6.5, 4.5))
     plot_moment(ax, sigma_x, curves, sigma_ys, colours)
     ax.set_title("Fig. 4(b): self-aligning moment vs longitudinal slip\n" + subtitle, fontsize=10)
-    fig.tight_layout()
-    fig_b = os.path.join(a.output, "fig4b_moment.png")
-    fig.savefig(fig_b, dpi=150)
-    plt.close(fig)
+    fig_b = save(fig, a.output, "fig4b_moment.png")
 
     # Fig. 4(c): F_y versus F_x, friction circle
     fig, ax = plt.subplots(figsize=(6, 6))
     plot_circle(ax, curves, sigma_ys, colours, mu_fz)
     ax.set_title("Fig. 4(c): friction circle\n" + subtitle, fontsize=10)
-    fig.tight_layout()
-    fig_c = os.path.join(a.output, "fig4c_friction_circle.png")
-    fig.savefig(fig_c, dpi=150)
-    plt.close(fig)
+    fig_c = save(fig, a.output, "fig4c_friction_circle.png")
 
     # Summary
     utilisation = max(float(np.max(np.hypot(c["Fx"], c["Fy"]))) for c in curves.values()) / mu_fz

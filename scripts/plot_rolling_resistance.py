@@ -8,10 +8,7 @@ exact solution through the critical speed into the point-contact regime (note 13
 Usage: plot_rolling_resistance.py --output DIR [--config YAML] [--contact-eval PATH] [--vmax V]
 """
 import argparse
-import json
 import os
-import shutil
-import subprocess
 import sys
 
 import matplotlib
@@ -19,6 +16,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import yaml  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # also when run through rosrun's wrapper
+from contact_eval_tool import contact_eval_command, run_json  # noqa: E402
 
 # config key -> contact_eval flag
 FLAGS = {
@@ -32,21 +32,12 @@ FLAGS = {
 }
 
 
-def contact_eval_command(path):
-    if path:
-        return [path]
-    if shutil.which("rosrun"):
-        return ["rosrun", "sphere_contact_estimator", "contact_eval"]
-    sys.exit("contact_eval not found: source the workspace's devel/setup.bash or pass --contact-eval")
-
-
 def run(cmd, params, *args):
     flags = []
     for key, flag in FLAGS.items():
         if key in params:
             flags += [flag, repr(float(params[key]))]
-    out = subprocess.run(cmd + ["cylinder"] + flags + list(args), check=True, capture_output=True, text=True)
-    return json.loads(out.stdout)
+    return run_json(cmd, ["cylinder"] + flags + list(args))
 
 
 def column(rows, key, scale=1.0):
@@ -150,4 +141,7 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except RuntimeError as err:
+        sys.exit(str(err))

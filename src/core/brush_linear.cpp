@@ -4,14 +4,12 @@
 #include <cmath>
 
 // Package
-#include "sphere_contact_estimator/core/rolling_frame.h"
-
 // Boost
 #include <boost/math/constants/constants.hpp>
 
 namespace sphere_contact_estimator
 {
-BrushLinear::BrushLinear(const BrushParameters& parameters) : BrushModel(parameters)
+BrushLinear::BrushLinear(const BrushParameters& parameters) : BrushSlipModel(parameters)
 {
   const double a = p_.a, k = p_.k;
   C_sigma_ = 8.0 / 3.0 * k * a * a * a;                    // eq. 62
@@ -43,20 +41,9 @@ BrushForces BrushLinear::evaluate(const Eigen::Vector2d& sigma, double phi) cons
   return f;
 }
 
-BrushForces BrushLinear::update(const ContactKinematics& kin, double dt)
+BrushForces BrushLinear::evaluate(const Eigen::Vector2d& sigma, double phi, double, double) const
 {
-  checkInput(kin, dt);
-  const Slips s = computeSlips(kin, p_.standstill_speed);
-  if (!s.defined)
-  {
-    BrushForces f;
-    f.flags |= brush_flags::kStandstill;
-    return f;
-  }
-  const RollingFrame frame(s.epsilon);
-  BrushForces f = evaluate(frame.toRolling(s.sigma), s.phi);
-  frame.forcesToPatch(f);
-  return f;
+  return evaluate(sigma, phi);
 }
 
 }  // namespace sphere_contact_estimator

@@ -9,6 +9,7 @@
 #include "sphere_contact_estimator/core/brush_linear.h"
 #include "sphere_contact_estimator/core/brush_steady.h"
 #include "sphere_contact_estimator/core/brush_transient.h"
+#include "sphere_contact_estimator/core/rolling_frame.h"
 
 namespace sphere_contact_estimator
 {
@@ -49,6 +50,22 @@ void BrushModel::checkInput(const ContactKinematics& k, double dt)
     msg << "brush model: time step dt = " << dt << " s must be finite and >= 0";
     throw std::invalid_argument(msg.str());
   }
+}
+
+BrushForces BrushSlipModel::update(const ContactKinematics& kin, double dt)
+{
+  checkInput(kin, dt);
+  const Slips s = computeSlips(kin, p_.standstill_speed);
+  if (!s.defined)
+  {
+    BrushForces f;
+    f.flags |= brush_flags::kStandstill;
+    return f;
+  }
+  const RollingFrame frame(s.epsilon);
+  BrushForces f = evaluate(frame.toRolling(s.sigma), s.phi, s.phi_gamma, s.phi_psi);
+  frame.forcesToPatch(f);
+  return f;
 }
 
 std::unique_ptr<BrushModel> makeBrushModel(BrushModelKind kind, const BrushParameters& parameters)

@@ -9,7 +9,6 @@
 
 // Package
 #include "sphere_contact_estimator/core/friction_cap.h"
-#include "sphere_contact_estimator/core/rolling_frame.h"
 
 namespace sphere_contact_estimator
 {
@@ -28,24 +27,8 @@ double cross(const Eigen::Vector2d& x, const Eigen::Vector2d& u)
 }
 }  // namespace
 
-BrushSteady::BrushSteady(const BrushParameters& parameters) : BrushModel(parameters)
+BrushSteady::BrushSteady(const BrushParameters& parameters) : BrushSlipModel(parameters)
 {
-}
-
-BrushForces BrushSteady::update(const ContactKinematics& kin, double dt)
-{
-  checkInput(kin, dt);
-  const Slips s = computeSlips(kin, p_.standstill_speed);
-  if (!s.defined)
-  {
-    BrushForces f;
-    f.flags |= brush_flags::kStandstill;
-    return f;
-  }
-  const RollingFrame frame(s.epsilon);
-  BrushForces f = evaluate(frame.toRolling(s.sigma), s.phi, s.phi_gamma, s.phi_psi);
-  frame.forcesToPatch(f);
-  return f;
 }
 
 BrushForces BrushSteady::evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi) const

@@ -15,14 +15,15 @@ namespace sphere_contact_estimator
 /// integrates to 8 a^5 / 15. The steady model recovers this coefficient (test_brush_linear).
 /// Tilt and the turn coupling are second order in the slips and not part of the linear theory.
 /// Past mu F_z the force is scaled back onto the friction circle and flagged.
-class BrushLinear : public BrushModel
+class BrushLinear : public BrushSlipModel
 {
 public:
   explicit BrushLinear(const BrushParameters& parameters);
-  BrushForces update(const ContactKinematics& kinematics, double dt) override;
   BrushModelKind kind() const override { return BrushModelKind::Linear; }
 
-  /// The same from slips in the epsilon = (0, 1) frame.
+  /// Forces from slips in the epsilon = (0, 1) frame; the split of phi into tilt and turn is a
+  /// second-order effect the linear theory leaves out.
+  BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi) const override;
   BrushForces evaluate(const Eigen::Vector2d& sigma, double phi) const;
 
   double C_sigma() const { return C_sigma_; }      ///< [N]

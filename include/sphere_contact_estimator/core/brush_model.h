@@ -46,6 +46,20 @@ protected:
   BrushParameters p_;
 };
 
+/// The steady models, which work on slips (eq. 12) in the frame where epsilon = (0, 1): update()
+/// computes the slips, rotates into that frame, evaluates and rotates the forces back. Below the
+/// standstill speed the slips are undefined: zero forces, flagged kStandstill.
+class BrushSlipModel : public BrushModel
+{
+public:
+  using BrushModel::BrushModel;
+  BrushForces update(const ContactKinematics& kinematics, double dt) override;
+
+  /// Forces from slips in the epsilon = (0, 1) frame: sigma, spin phi, and its tilt and turn parts
+  /// phi_gamma + phi_psi = phi (eq. 13).
+  virtual BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi) const = 0;
+};
+
 std::unique_ptr<BrushModel> makeBrushModel(BrushModelKind kind, const BrushParameters& parameters);
 
 }  // namespace sphere_contact_estimator

@@ -23,16 +23,14 @@ namespace sphere_contact_estimator
 ///
 /// |R_gamma| < a: no steady state on an inner disc (Fig. 2): flagged, zero forces; fall back to the
 /// transient model. Standstill: flagged, zero forces.
-class BrushSteady : public BrushModel
+class BrushSteady : public BrushSlipModel
 {
 public:
   explicit BrushSteady(const BrushParameters& parameters);
-  BrushForces update(const ContactKinematics& kinematics, double dt) override;
   BrushModelKind kind() const override { return BrushModelKind::Steady; }
 
-  /// The same from slips in the epsilon = (0, 1) frame: sigma, spin phi, and with tilt the tilt and
-  /// turn spins phi_gamma + phi_psi = phi (eq. 13); they are ignored when tilt is off.
-  BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi) const;
+  /// phi_gamma and phi_psi are used with tilt on only.
+  BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi) const override;
 
   /// Tilt spin below which the paths count as straight: |R_gamma| > 1e9 a.
   static constexpr double kStraightPathTolerance = 1e-9;
