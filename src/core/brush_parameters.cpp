@@ -65,6 +65,12 @@ double BrushParameters::qz(double r2) const
   return 0.0;
 }
 
+bool operator==(const BrushParameters& a, const BrushParameters& b)
+{
+  return a.a == b.a && a.k == b.k && a.F_z == b.F_z && a.mu == b.mu && a.pressure == b.pressure && a.tilt == b.tilt &&
+         a.resolution == b.resolution && a.standstill_speed == b.standstill_speed;
+}
+
 double contactRadiusHertz(double F_z, double R, double E_star)
 {
   if (!(std::isfinite(F_z) && F_z >= 0.0 && std::isfinite(R) && R > 0.0 && std::isfinite(E_star) && E_star > 0.0))

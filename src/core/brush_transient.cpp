@@ -50,6 +50,31 @@ Eigen::Vector2d drive(const ContactKinematics& k, const Eigen::Vector2d& x)
 
 BrushTransient::BrushTransient(const BrushParameters& parameters) : BrushModel(parameters)
 {
+  allocate();
+}
+
+bool BrushTransient::setParameters(const BrushParameters& parameters)
+{
+  parameters.validate();
+  const bool lattice_changes = parameters.a != p_.a || parameters.resolution != p_.resolution;
+  p_ = parameters;
+  if (lattice_changes)
+    allocate();
+  return lattice_changes;
+}
+
+void BrushTransient::rotateFrame(double alpha)
+{
+  const Eigen::Matrix2d Q = rotation(-alpha);  // components in axes turned by alpha
+  R_ = Q * R_;
+  o_ = Q * o_;
+  for (Eigen::Vector2d& u : u_)
+    u = Q * u;
+  recentre();
+}
+
+void BrushTransient::allocate()
+{
   const int n = p_.resolution;
   h_ = 2.0 * p_.a / n;
   w_ = n + 6;  // the patch plus a margin: points shifted into the window are outside the patch

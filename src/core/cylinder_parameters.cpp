@@ -40,4 +40,9 @@ void CylinderParameters::validate() const
   require(L, kRangeL, false, "effective length", "L", "m");
 }
 
+bool operator==(const CylinderParameters& a, const CylinderParameters& b)
+{
+  return a.R == b.R && a.M == b.M && a.k == b.k && a.gamma == b.gamma && a.m == b.m && a.g == b.g && a.L == b.L;
+}
+
 }  // namespace sphere_contact_estimator

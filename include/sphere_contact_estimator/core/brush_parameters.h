@@ -35,6 +35,9 @@ struct BrushParameters
   double qz(double r2) const;
 };
 
+bool operator==(const BrushParameters& a, const BrushParameters& b);
+inline bool operator!=(const BrushParameters& a, const BrushParameters& b) { return !(a == b); }
+
 /// Hertz contact radius of a sphere of radius R [m] under load F_z [N] on a flat with effective
 /// modulus E* [Pa]: a = (3 F_z R / (4 E*))^(1/3).
 double contactRadiusHertz(double F_z, double R, double E_star);

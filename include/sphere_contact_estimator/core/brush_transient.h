@@ -43,6 +43,16 @@ public:
   /// Forces of the current bristle state, without advancing.
   BrushForces forces() const;
 
+  /// The patch frame turned by alpha [rad] about its z axis (paper frame, z down): bristle positions and
+  /// deflections, which are physical, are re-expressed in the new axes. For heading changes that the turn
+  /// coupling does not carry (re-initialising the rolling direction after standstill or a reversal).
+  void rotateFrame(double alpha);
+
+  /// New parameters. The bristle state is kept unless the lattice changes (patch radius or resolution):
+  /// deflections stay meaningful under a new stiffness, load, friction, pressure or formulation, and the
+  /// next substep applies the new bound. Returns true when the state had to be reset.
+  bool setParameters(const BrushParameters& parameters);
+
   /// Visits every bristle inside the patch: f(position x [m], deflection u [m], sliding).
   template <class F>
   void forEachBristle(F&& f) const
@@ -67,6 +77,7 @@ private:
   {
     return o_ + R_ * Eigen::Vector2d((i - c0_) * h_, (j - c0_) * h_);
   }
+  void allocate();  // sizes the lattice for p_ and resets
   void substep(const ContactKinematics& kin, double dt);
   void recentre();
 

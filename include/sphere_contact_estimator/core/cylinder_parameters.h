@@ -40,4 +40,7 @@ struct CylinderParameters
   double weight() const { return M * g; }
 };
 
+bool operator==(const CylinderParameters& a, const CylinderParameters& b);
+inline bool operator!=(const CylinderParameters& a, const CylinderParameters& b) { return !(a == b); }
+
 }  // namespace sphere_contact_estimator

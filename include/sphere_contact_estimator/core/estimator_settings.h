@@ -1,0 +1,77 @@
+#pragma once
+
+// STL
+#include <cstdint>
+
+// Package
+#include "sphere_contact_estimator/core/brush_parameters.h"
+#include "sphere_contact_estimator/core/cylinder_parameters.h"
+
+namespace sphere_contact_estimator
+{
+/// Which brush model a scene runs (or none).
+enum class BrushChoice : std::uint8_t
+{
+  Off = 0,
+  Linear = 1,
+  Steady = 2,
+  Transient = 3,
+};
+
+/// Which rolling-resistance model a scene runs (or none).
+enum class RollingResistanceChoice : std::uint8_t
+{
+  Off = 0,
+  Exact = 1,
+  Expansion = 2,
+  Table = 3,
+};
+
+/// Where the turning rate psi_dot of the contact frame comes from.
+enum class TiltRatioSource : std::uint8_t
+{
+  Estimate = 0,  ///< from the heading of V_r over time; chi_gamma follows
+  Fixed = 1,     ///< psi_dot = (1 - tilt_ratio) omega_z
+};
+
+/// Everything a scene sets; the node's parameters have the same names. SI units.
+struct EstimatorSettings
+{
+  // sphere and load
+  double rolling_radius = 0.1;  ///< R_r [m]
+  double robot_mass = 5.0;      ///< [kg]; the load is robot_mass * gravity unless load > 0
+  double load = 0.0;            ///< F_z [N]; 0: robot_mass * gravity
+  double gravity = 9.81;        ///< [m/s^2]
+  // brush
+  BrushChoice brush_model = BrushChoice::Steady;
+  double patch_radius = 0.01;      ///< a [m], unless contact_modulus > 0
+  double contact_modulus = 0.0;    ///< E* [Pa]; > 0: a from Hertz with R = rolling_radius
+  double bristle_stiffness = 1e9;  ///< k [N/m^3]
+  double friction = 0.8;           ///< mu
+  PressureDistribution pressure = PressureDistribution::Parabolic;
+  bool tilt = false;               ///< Sect. 4 formulation (eq. 31, 32)
+  TiltRatioSource tilt_ratio_source = TiltRatioSource::Estimate;
+  double tilt_ratio = 1.0;         ///< chi_gamma for TiltRatioSource::Fixed
+  int resolution = 16;
+  double standstill_speed = 1e-3;  ///< V_r below which slips are undefined [m/s]
+  double turn_rate_time_constant = 0.05;  ///< low-pass of the psi_dot estimate [s]
+  double max_step = 0.5;           ///< a longer gap between messages resets the transient state [s]
+  // rolling resistance (Poeschel et al.), the sphere taken as a cylinder of effective length L
+  RollingResistanceChoice rolling_resistance_model = RollingResistanceChoice::Table;
+  double surface_stiffness = 1e7;  ///< k [N/m^3]
+  double surface_damping = 5e5;    ///< gamma [kg/(m^2 s)]
+  double surface_density = 100.0;  ///< m [kg/m^2]
+  double mass_per_length = 0.0;    ///< M [kg/m]; 0: load / (gravity L)
+  double effective_length = 0.1;   ///< L [m]
+
+  /// F_z [N].
+  double verticalLoad() const { return load > 0.0 ? load : robot_mass * gravity; }
+  /// The brush model's parameters (patch radius from Hertz when contact_modulus > 0).
+  BrushParameters brushParameters() const;
+  /// The cylinder model's parameters.
+  CylinderParameters cylinderParameters() const;
+  /// Throws std::invalid_argument naming the first bad value (parameter names as the node's).
+  void validate() const;
+};
+
+}  // namespace sphere_contact_estimator

@@ -1,0 +1,98 @@
+#pragma once
+
+// STL
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+
+// Boost
+#include <boost/thread/recursive_mutex.hpp>
+
+// ROS
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <dynamic_reconfigure/server.h>
+#include <geometry_msgs/WrenchStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
+#include <visualization_msgs/MarkerArray.h>
+
+// Eigen
+#include <Eigen/Geometry>
+
+// Package
+#include "sphere_contact_estimator/ContactEstimate.h"
+#include "sphere_contact_estimator/ContactEstimatorConfig.h"
+#include "sphere_contact_estimator/core/contact_estimator.h"
+
+namespace sphere_contact_estimator
+{
+/// The ROS side of the contact estimator, shared by the node and the nodelet: subscriptions, tf,
+/// dynamic_reconfigure, diagnostics and publishers around a core ContactEstimator.
+///
+/// Topics (relative to the node handle, remappable): subscribes `odom` (nav_msgs/Odometry); publishes
+/// `contact_estimate`, `brush_wrench`, `rolling_resistance_wrench`, `contact_markers` (only while
+/// subscribed) and /diagnostics; broadcasts the contact frame on tf.
+class ContactEstimatorRos
+{
+public:
+  /// @param nh topics; @param pnh private parameters and the reconfigure server
+  ContactEstimatorRos(ros::NodeHandle nh, ros::NodeHandle pnh);
+
+private:
+  void odometryCallback(const nav_msgs::Odometry::ConstPtr& msg);
+  void reconfigureCallback(ContactEstimatorConfig& config, uint32_t level);
+  /// Rotation from the odometry's child frame into the ground frame, and the sphere centre there: tf at
+  /// the stamp, else tf's latest, else the odometry's own pose. False when there is neither (never waits).
+  bool groundPose(const nav_msgs::Odometry& msg, const std::string& ground, Eigen::Quaterniond& rotation,
+                  Eigen::Vector3d& centre, bool& have_centre);
+  void publishMarkers(const ContactEstimateData& estimate);
+  void diagnoseInput(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void diagnoseTf(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void diagnoseModels(diagnostic_updater::DiagnosticStatusWrapper& status);
+
+  // **** ROS-related
+  ros::NodeHandle nh_, pnh_;
+  ros::Subscriber odom_sub_;
+  ros::Publisher estimate_pub_, brush_wrench_pub_, rr_wrench_pub_, marker_pub_;
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_;
+  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  boost::recursive_mutex reconfigure_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<ContactEstimatorConfig>> reconfigure_server_;
+  diagnostic_updater::Updater updater_;
+  ros::WallTimer diagnostics_timer_;  // wall time: diagnostics (stale input) go on when sim time stops
+
+  // **** parameters and state, shared by the odometry and reconfigure callbacks: guarded by mutex_
+  std::mutex mutex_;
+  ContactEstimator estimator_;
+  ContactEstimatorConfig config_;  // the accepted configuration
+  std::string ground_frame_, contact_frame_;
+  bool publish_tf_ = true;
+  double stale_timeout_ = 1.0;
+  ros::Time last_broadcast_;       // no TF_REPEATED_DATA: one broadcast per stamp
+
+  // **** messages, reused so the hot path does not allocate them
+  ContactEstimate estimate_msg_;
+  geometry_msgs::WrenchStamped brush_wrench_msg_, rr_wrench_msg_;
+  geometry_msgs::TransformStamped contact_tf_;
+  visualization_msgs::MarkerArray markers_;
+
+  // **** diagnostics counters (guarded by mutex_)
+  std::uint64_t received_ = 0, published_ = 0, rejected_input_ = 0, no_orientation_ = 0;
+  std::uint64_t tf_at_stamp_ = 0, tf_latest_ = 0, from_odometry_ = 0, time_jumps_ = 0;
+  std::uint64_t window_received_ = 0;
+  ros::WallTime window_start_;
+  ros::Time last_received_;
+  double compute_sum_ = 0.0, compute_max_ = 0.0;
+  std::uint64_t compute_count_ = 0;
+  std::uint32_t last_brush_flags_ = 0, last_rr_flags_ = 0, last_flags_ = 0;
+  std::uint8_t last_regime_ = 0;
+  bool have_estimate_ = false;
+  std::string last_tf_error_;
+};
+
+}  // namespace sphere_contact_estimator

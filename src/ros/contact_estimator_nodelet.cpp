@@ -1,0 +1,22 @@
+// The contact estimator as a nodelet: sphere_contact_estimator/ContactEstimatorNodelet.
+#include <memory>
+
+#include <nodelet/nodelet.h>
+#include <pluginlib/class_list_macros.hpp>
+
+#include "sphere_contact_estimator/ros/contact_estimator_ros.h"
+
+namespace sphere_contact_estimator
+{
+class ContactEstimatorNodelet : public nodelet::Nodelet
+{
+  void onInit() override
+  {
+    estimator_ = std::make_unique<ContactEstimatorRos>(getNodeHandle(), getPrivateNodeHandle());
+  }
+
+  std::unique_ptr<ContactEstimatorRos> estimator_;
+};
+}  // namespace sphere_contact_estimator
+
+PLUGINLIB_EXPORT_CLASS(sphere_contact_estimator::ContactEstimatorNodelet, nodelet::Nodelet)

@@ -1,0 +1,412 @@
+#include "sphere_contact_estimator/ros/contact_estimator_ros.h"
+
+// STL
+#include <algorithm>
+#include <cmath>
+
+// ROS
+#include <tf2_eigen/tf2_eigen.h>
+
+// Package
+#include "sphere_contact_estimator/core/brush_transient.h"
+#include "sphere_contact_estimator/ros/estimate_message.h"
+
+namespace sphere_contact_estimator
+{
+namespace
+{
+EstimatorSettings settingsFrom(const ContactEstimatorConfig& c)
+{
+  EstimatorSettings s;
+  s.rolling_radius = c.rolling_radius;
+  s.robot_mass = c.robot_mass;
+  s.load = c.load;
+  s.gravity = c.gravity;
+  s.brush_model = static_cast<BrushChoice>(std::clamp(c.brush_model, 0, 3));
+  s.patch_radius = c.patch_radius;
+  s.contact_modulus = c.contact_modulus;
+  s.bristle_stiffness = c.bristle_stiffness;
+  s.friction = c.friction;
+  s.pressure = static_cast<PressureDistribution>(std::clamp(c.pressure, 0, 2));
+  s.tilt = c.tilt;
+  s.tilt_ratio_source = static_cast<TiltRatioSource>(std::clamp(c.tilt_ratio_source, 0, 1));
+  s.tilt_ratio = c.tilt_ratio;
+  s.resolution = c.resolution;
+  s.standstill_speed = c.standstill_speed;
+  s.turn_rate_time_constant = c.turn_rate_time_constant;
+  s.max_step = c.max_step;
+  s.rolling_resistance_model = static_cast<RollingResistanceChoice>(std::clamp(c.rolling_resistance_model, 0, 3));
+  s.surface_stiffness = c.surface_stiffness;
+  s.surface_damping = c.surface_damping;
+  s.surface_density = c.surface_density;
+  s.mass_per_length = c.mass_per_length;
+  s.effective_length = c.effective_length;
+  return s;
+}
+
+bool validQuaternion(const geometry_msgs::Quaternion& q, Eigen::Quaterniond& out)
+{
+  out = Eigen::Quaterniond(q.w, q.x, q.y, q.z);
+  const double n = out.norm();
+  if (!(std::isfinite(n) && n > 0.5 && n < 1.5))  // unset (all zero) or garbage
+    return false;
+  out.normalize();
+  return true;
+}
+
+Eigen::Vector3d vector(const geometry_msgs::Vector3& v)
+{
+  return { v.x, v.y, v.z };
+}
+
+// Transform at the stamp, else tf's latest; never waits. Counts which one it was.
+bool lookup(const tf2_ros::Buffer& buffer, const std::string& target, const std::string& source, const ros::Time& stamp,
+            geometry_msgs::TransformStamped& out, std::uint64_t& at_stamp, std::uint64_t& latest, std::string& error)
+{
+  if (target.empty() || source.empty())
+    return false;
+  try
+  {
+    if (buffer.canTransform(target, source, stamp))
+    {
+      out = buffer.lookupTransform(target, source, stamp);
+      ++at_stamp;
+      return true;
+    }
+    if (buffer.canTransform(target, source, ros::Time(0), &error))
+    {
+      out = buffer.lookupTransform(target, source, ros::Time(0));
+      ++latest;
+      return true;
+    }
+  }
+  catch (const tf2::TransformException& e)
+  {
+    error = e.what();
+  }
+  return false;
+}
+}  // namespace
+
+ContactEstimatorRos::ContactEstimatorRos(ros::NodeHandle nh, ros::NodeHandle pnh)
+  : nh_(nh)
+  , pnh_(pnh)
+  , tf_listener_(tf_buffer_)
+  , updater_(nh, pnh, pnh.getNamespace())
+  , estimator_(settingsFrom(ContactEstimatorConfig::__getDefault__()))
+  , config_(ContactEstimatorConfig::__getDefault__())
+{
+  contact_frame_ = config_.contact_frame;
+  estimate_pub_ = nh_.advertise<ContactEstimate>("contact_estimate", 50);
+  brush_wrench_pub_ = nh_.advertise<geometry_msgs::WrenchStamped>("brush_wrench", 50);
+  rr_wrench_pub_ = nh_.advertise<geometry_msgs::WrenchStamped>("rolling_resistance_wrench", 50);
+  marker_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("contact_markers", 2);
+
+  updater_.setHardwareID("sphere_contact_estimator");
+  updater_.add("odometry input", this, &ContactEstimatorRos::diagnoseInput);
+  updater_.add("tf", this, &ContactEstimatorRos::diagnoseTf);
+  updater_.add("contact models", this, &ContactEstimatorRos::diagnoseModels);
+  window_start_ = ros::WallTime::now();
+
+  // The server reads the private parameters (config/contact_estimator.yaml) and calls back once now.
+  reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<ContactEstimatorConfig>>(reconfigure_mutex_, pnh_);
+  reconfigure_server_->setCallback(
+      [this](ContactEstimatorConfig& config, uint32_t level) { reconfigureCallback(config, level); });
+
+  odom_sub_ = nh_.subscribe("odom", 100, &ContactEstimatorRos::odometryCallback, this, ros::TransportHints().tcpNoDelay());
+  diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(0.25), [this](const ros::WallTimerEvent&) { updater_.update(); });
+  ROS_INFO_STREAM("contact estimator: listening on " << odom_sub_.getTopic() << ", publishing "
+                                                     << estimate_pub_.getTopic());
+}
+
+void ContactEstimatorRos::reconfigureCallback(ContactEstimatorConfig& config, uint32_t /*level*/)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  try
+  {
+    estimator_.configure(settingsFrom(config));
+  }
+  catch (const std::exception& e)
+  {
+    ROS_ERROR_STREAM("contact estimator: configuration rejected, keeping the previous one: " << e.what());
+    config = config_;  // the server publishes what is in force
+    return;
+  }
+  config_ = config;
+  ground_frame_ = config.ground_frame;
+  contact_frame_ = config.contact_frame.empty() ? std::string("contact_patch") : config.contact_frame;
+  publish_tf_ = config.publish_tf;
+  stale_timeout_ = config.stale_timeout;
+  const EstimatorSettings& s = estimator_.settings();
+  ROS_INFO("contact estimator: brush model %d (a = %.4g m, F_z = %.4g N, tilt %s), rolling resistance model %d",
+           config.brush_model, s.brushParameters().a, s.verticalLoad(), s.tilt ? "on" : "off",
+           config.rolling_resistance_model);
+}
+
+bool ContactEstimatorRos::groundPose(const nav_msgs::Odometry& msg, const std::string& ground,
+                                     Eigen::Quaterniond& rotation, Eigen::Vector3d& centre, bool& have_centre)
+{
+  geometry_msgs::TransformStamped t;
+  const ros::Time& stamp = msg.header.stamp;
+  // tf from the twist's frame (the sphere's, whose origin is its centre)
+  if (lookup(tf_buffer_, ground, msg.child_frame_id, stamp, t, tf_at_stamp_, tf_latest_, last_tf_error_))
+  {
+    rotation = tf2::transformToEigen(t).rotation();
+    centre = vector(t.transform.translation);
+    have_centre = true;
+    return true;
+  }
+  // the odometry's own pose, moved into the ground frame by tf when that is another frame
+  Eigen::Quaterniond q;
+  if (!validQuaternion(msg.pose.pose.orientation, q))
+    return false;
+  const Eigen::Vector3d position(msg.pose.pose.position.x, msg.pose.pose.position.y, msg.pose.pose.position.z);
+  if (ground == msg.header.frame_id)
+  {
+    rotation = q;
+    centre = position;
+    have_centre = position.allFinite();
+    ++from_odometry_;
+    return true;
+  }
+  if (lookup(tf_buffer_, ground, msg.header.frame_id, stamp, t, tf_at_stamp_, tf_latest_, last_tf_error_))
+  {
+    const Eigen::Isometry3d T = tf2::transformToEigen(t);
+    rotation = Eigen::Quaterniond(T.rotation()) * q;
+    centre = T * position;
+    have_centre = centre.allFinite();
+    ++from_odometry_;
+    return true;
+  }
+  return false;
+}
+
+void ContactEstimatorRos::odometryCallback(const nav_msgs::Odometry::ConstPtr& msg)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++received_;
+  ++window_received_;
+  last_received_ = ros::Time::now();
+  const std::string& ground = ground_frame_.empty() ? msg->header.frame_id : ground_frame_;
+  Eigen::Quaterniond q;
+  Eigen::Vector3d centre;
+  bool have_centre = false;
+  const std::uint64_t from_odometry = from_odometry_;
+  if (!groundPose(*msg, ground, q, centre, have_centre))
+  {
+    ++no_orientation_;
+    ROS_WARN_THROTTLE(5.0, "contact estimator: no rotation from '%s' to the ground frame '%s' (tf: %s) and no valid "
+                           "odometry orientation; message skipped",
+                      msg->child_frame_id.c_str(), ground.c_str(), last_tf_error_.c_str());
+    return;
+  }
+  // The twist is in child_frame_id (REP 105): into the gravity-aligned ground frame.
+  EstimatorInput in;
+  in.stamp = msg->header.stamp.toSec();
+  in.omega = q * vector(msg->twist.twist.angular);
+  in.v_contact = q * vector(msg->twist.twist.linear);
+  const ContactEstimateData* e = estimator_.update(in);
+  if (!e)
+  {
+    ++rejected_input_;
+    ROS_WARN_THROTTLE(5.0, "contact estimator: odometry with a non-finite or impossible twist or stamp skipped");
+    return;
+  }
+  if (e->flags & estimate_flags::kTimeJumpReset)
+  {
+    ++time_jumps_;
+    ROS_WARN("contact estimator: time went backwards (a looping bag?): state reset");
+  }
+
+  estimate_msg_.header.stamp = msg->header.stamp;
+  estimate_msg_.header.frame_id = contact_frame_;
+  toMessage(*e, estimate_msg_);
+  if (from_odometry_ != from_odometry)
+    estimate_msg_.flags |= ContactEstimate::FLAG_ORIENTATION_FROM_ODOMETRY;
+  estimate_pub_.publish(estimate_msg_);
+  brush_wrench_msg_.header = estimate_msg_.header;
+  brushWrench(*e, brush_wrench_msg_);
+  brush_wrench_pub_.publish(brush_wrench_msg_);
+  rr_wrench_msg_.header = estimate_msg_.header;
+  rollingResistanceWrench(*e, rr_wrench_msg_);
+  rr_wrench_pub_.publish(rr_wrench_msg_);
+  ++published_;
+
+  // The contact point, R_r below the centre along gravity, x along the rolling direction. One broadcast per
+  // stamp: re-sending an unchanged stamp is what makes tf print TF_REPEATED_DATA.
+  if (publish_tf_ && have_centre && msg->header.stamp != last_broadcast_)
+  {
+    geometry_msgs::TransformStamped& t = contact_tf_;
+    t.header.stamp = msg->header.stamp;
+    t.header.frame_id = ground;
+    t.child_frame_id = contact_frame_;
+    t.transform.translation.x = centre.x();
+    t.transform.translation.y = centre.y();
+    t.transform.translation.z = centre.z() - estimator_.settings().rolling_radius;
+    t.transform.rotation.z = std::sin(0.5 * e->heading);
+    t.transform.rotation.w = std::cos(0.5 * e->heading);
+    tf_broadcaster_.sendTransform(t);
+    last_broadcast_ = msg->header.stamp;
+  }
+  if (marker_pub_.getNumSubscribers() > 0)
+    publishMarkers(*e);
+
+  compute_sum_ += e->compute_time;
+  compute_max_ = std::max(compute_max_, e->compute_time);
+  ++compute_count_;
+  last_brush_flags_ = e->brush.flags;
+  last_rr_flags_ = e->rolling_resistance.flags;
+  last_regime_ = static_cast<std::uint8_t>(e->rolling_resistance.regime);
+  last_flags_ = estimate_msg_.flags;
+  have_estimate_ = true;
+}
+
+void ContactEstimatorRos::publishMarkers(const ContactEstimateData& e)
+{
+  using visualization_msgs::Marker;
+  markers_.markers.resize(4);
+  const auto base = [&](Marker& m, int id, int type) {
+    m.header = estimate_msg_.header;
+    m.ns = "contact";
+    m.id = id;
+    m.type = type;
+    m.action = Marker::ADD;
+    m.pose.orientation.w = 1.0;
+    m.lifetime = ros::Duration(0.5);
+  };
+  const double a = std::max(e.patch_radius, 1e-3);
+  Marker& disc = markers_.markers[0];
+  base(disc, 0, Marker::CYLINDER);
+  disc.scale.x = disc.scale.y = 2.0 * a;
+  disc.scale.z = 1e-3;
+  disc.color.r = disc.color.g = disc.color.b = 0.6f;
+  disc.color.a = 0.5f;
+  // bristles, green where they adhere and red where they slide (transient model)
+  Marker& zones = markers_.markers[1];
+  base(zones, 1, Marker::POINTS);
+  zones.scale.x = zones.scale.y = std::max(a / 20.0, 1e-4);
+  zones.points.clear();
+  zones.colors.clear();
+  if (const auto* transient = dynamic_cast<const BrushTransient*>(estimator_.brushModel()))
+    transient->forEachBristle([&](const Eigen::Vector2d& x, const Eigen::Vector2d&, bool sliding) {
+      geometry_msgs::Point p;
+      p.x = x.x();
+      p.y = -x.y();  // paper -> ROS
+      p.z = 2e-3;
+      zones.points.push_back(p);
+      std_msgs::ColorRGBA c;
+      c.r = sliding ? 0.9f : 0.1f;
+      c.g = sliding ? 0.1f : 0.8f;
+      c.a = 1.0f;
+      zones.colors.push_back(c);
+    });
+  if (zones.points.empty())
+    zones.action = Marker::DELETE;
+  // force arrows, 1 m per mu F_z
+  const double scale = e.load > 0.0 ? 1.0 / e.load : 1.0;
+  for (int i = 0; i < 2; ++i)
+  {
+    Marker& arrow = markers_.markers[2 + i];
+    base(arrow, 2 + i, Marker::ARROW);
+    arrow.points.resize(2);
+    arrow.points[0] = geometry_msgs::Point();
+    arrow.points[1] = geometry_msgs::Point();
+    if (i == 0)
+    {
+      arrow.points[1].x = e.brush.F_x * scale;
+      arrow.points[1].y = e.brush.F_y * scale;
+      arrow.color.b = 1.0f;
+    }
+    else
+    {
+      arrow.points[1].x = -e.rolling_resistance_force * scale;
+      arrow.color.r = 1.0f;
+      arrow.color.g = 0.5f;
+    }
+    arrow.scale.x = 0.1 * a;
+    arrow.scale.y = 0.2 * a;
+    arrow.color.a = 1.0f;
+  }
+  marker_pub_.publish(markers_);
+}
+
+void ContactEstimatorRos::diagnoseInput(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  const ros::WallTime now = ros::WallTime::now();
+  const double window = (now - window_start_).toSec();
+  const double rate = window > 0.0 ? window_received_ / window : 0.0;
+  window_start_ = now;
+  window_received_ = 0;
+  status.add("rate [Hz]", rate);
+  status.add("received", received_);
+  status.add("published", published_);
+  status.add("rejected (non-finite or impossible)", rejected_input_);
+  status.add("time jumps backwards", time_jumps_);
+  const double age = received_ ? (ros::Time::now() - last_received_).toSec() : -1.0;
+  status.add("age of last message [s]", age);
+  if (!received_)
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no odometry received yet");
+  else if (stale_timeout_ > 0.0 && age > stale_timeout_)
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "stale input: no odometry for " + std::to_string(age) + " s");
+  else if (rejected_input_ > 0)
+    status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN, "%lu odometry messages rejected (non-finite twist)",
+                    static_cast<unsigned long>(rejected_input_));
+  else
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "receiving odometry");
+  if (compute_count_)
+  {
+    status.add("compute time mean [s]", compute_sum_ / compute_count_);
+    status.add("compute time max [s]", compute_max_);
+  }
+}
+
+void ContactEstimatorRos::diagnoseTf(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  status.add("ground frame", ground_frame_.empty() ? std::string("(the odometry's frame)") : ground_frame_);
+  status.add("tf at the stamp", tf_at_stamp_);
+  status.add("tf latest", tf_latest_);
+  status.add("odometry orientation", from_odometry_);
+  status.add("skipped: no orientation", no_orientation_);
+  status.add("last tf error", last_tf_error_);
+  if (no_orientation_ > 0)
+    status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN,
+                    "%lu messages skipped: no tf to the ground frame and no valid odometry orientation",
+                    static_cast<unsigned long>(no_orientation_));
+  else if (from_odometry_ > 0 && tf_at_stamp_ + tf_latest_ == 0)
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "no tf: using the odometry's orientation");
+  else
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "tf available");
+}
+
+void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!have_estimate_)
+  {
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "no estimate yet");
+    return;
+  }
+  std::string problems;
+  const auto note = [&problems](bool condition, const char* text) {
+    if (condition)
+      problems += problems.empty() ? text : std::string("; ") + text;
+  };
+  note(last_rr_flags_ & cylinder_flags::kUnderdamped, "underdamped surface (eq. 2)");
+  note(last_regime_ == static_cast<std::uint8_t>(CylinderRegime::PointContact), "point-contact regime (past v_c)");
+  note(last_rr_flags_ & cylinder_flags::kNoSteadyState, "no steady rolling state");
+  note(last_brush_flags_ & brush_flags::kNoSteadyStateTilt, "|R_gamma| < a: no steady state");
+  note(last_brush_flags_ & brush_flags::kStandstill, "standstill: steady brush model undefined");
+  note(last_brush_flags_ & brush_flags::kLinearSaturated, "linear brush model saturated");
+  status.add("brush flags", last_brush_flags_);
+  status.add("rolling-resistance flags", last_rr_flags_);
+  status.add("estimate flags", last_flags_);
+  status.add("standstill", static_cast<bool>(last_flags_ & estimate_flags::kStandstill));
+  if (problems.empty())
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "models valid");
+  else
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, problems);
+}
+
+}  // namespace sphere_contact_estimator

@@ -1,0 +1,74 @@
+#include "sphere_contact_estimator/ros/estimate_message.h"
+
+namespace sphere_contact_estimator
+{
+void toMessage(const ContactEstimateData& e, ContactEstimate& m)
+{
+  m.rolling_speed = e.rolling_speed;
+  m.heading = e.heading;
+  m.turn_rate = e.turn_rate;
+  m.sliding_velocity.x = e.sliding_velocity.x();
+  m.sliding_velocity.y = e.sliding_velocity.y();
+  m.sliding_velocity.z = 0.0;
+  m.slips_defined = e.slips_defined;
+  m.slip.x = e.slip.x();
+  m.slip.y = e.slip.y();
+  m.slip.z = 0.0;
+  m.spin = e.spin;
+  m.spin_tilt = e.spin_tilt;
+  m.spin_turn = e.spin_turn;
+  m.tilt_ratio = e.tilt_ratio;
+  m.epsilon.x = e.epsilon.x();
+  m.epsilon.y = e.epsilon.y();
+  m.epsilon.z = 0.0;
+
+  m.brush_model = static_cast<uint8_t>(e.brush_model);
+  m.patch_radius = e.patch_radius;
+  m.load = e.load;
+  m.brush_force.x = e.brush.F_x;
+  m.brush_force.y = e.brush.F_y;
+  m.brush_force.z = 0.0;
+  m.brush_moment = e.brush.M_z;
+  m.sliding_fraction = e.brush.sliding_fraction;
+  m.max_utilisation = e.brush.max_utilisation;
+  m.brush_flags = e.brush.flags;
+  m.brush_valid = e.brush_model == BrushChoice::Off || e.brush.valid();
+
+  RollingResistance& r = m.rolling_resistance;
+  const CylinderState& c = e.rolling_resistance;
+  r.model = static_cast<uint8_t>(e.rolling_resistance_model);
+  r.speed = c.v;
+  r.h = c.h;
+  r.xi_plus = c.xi_plus;
+  r.xi_minus = c.xi_minus;
+  r.force = e.rolling_resistance_force;
+  r.torque = e.rolling_resistance_torque;
+  r.mu_roll = c.mu_roll;
+  r.regime = static_cast<uint8_t>(c.regime);
+  r.flags = c.flags;
+  r.valid = e.rolling_resistance_model == RollingResistanceChoice::Off || c.valid();
+
+  m.valid = e.valid();
+  m.flags = e.flags;
+  m.compute_time = e.compute_time;
+}
+
+void brushWrench(const ContactEstimateData& e, geometry_msgs::WrenchStamped& w)
+{
+  w.wrench.force.x = e.brush.F_x;
+  w.wrench.force.y = e.brush.F_y;
+  w.wrench.force.z = 0.0;
+  w.wrench.torque.x = 0.0;
+  w.wrench.torque.y = 0.0;
+  w.wrench.torque.z = e.brush.M_z;
+}
+
+void rollingResistanceWrench(const ContactEstimateData& e, geometry_msgs::WrenchStamped& w)
+{
+  w.wrench.force.x = -e.rolling_resistance_force;
+  w.wrench.force.y = 0.0;
+  w.wrench.force.z = 0.0;
+  w.wrench.torque.x = w.wrench.torque.y = w.wrench.torque.z = 0.0;
+}
+
+}  // namespace sphere_contact_estimator
