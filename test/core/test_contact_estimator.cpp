@@ -1,0 +1,196 @@
+// The ROS-free estimator behind the node: frames and signs, time handling, the turn-rate estimate,
+// configuration.
+
+// STL
+#include <cmath>
+#include <limits>
+
+// GTest
+#include <gtest/gtest.h>
+
+// Package
+#include "sphere_contact_estimator/core/brush_steady.h"
+#include "sphere_contact_estimator/core/contact_estimator.h"
+#include "sphere_contact_estimator/core/cylinder_exact.h"
+
+namespace sphere_contact_estimator
+{
+namespace
+{
+EstimatorSettings settings(BrushChoice brush = BrushChoice::Steady)
+{
+  EstimatorSettings s;
+  s.brush_model = brush;
+  s.rolling_resistance_model = RollingResistanceChoice::Exact;
+  s.standstill_speed = 0.01;
+  s.turn_rate_time_constant = 0.0;
+  return s;
+}
+
+// Rolling at speed v along yaw in the ground frame, with the centre sliding by (ds_along, ds_left) and spin
+// omega_z about z up.
+EstimatorInput rolling(double stamp, double v, double yaw, double ds_along, double ds_left, double omega_z, double R = 0.1)
+{
+  EstimatorInput in;
+  in.stamp = stamp;
+  const Eigen::Vector2d d(std::cos(yaw), std::sin(yaw)), left(-d.y(), d.x());
+  // V_r = R (omega_y, -omega_x) along d (conventions.md)
+  in.omega = Eigen::Vector3d(-d.y() * v / R, d.x() * v / R, omega_z);
+  const Eigen::Vector2d vc = (v + ds_along) * d + ds_left * left;
+  in.v_contact = Eigen::Vector3d(vc.x(), vc.y(), 0.0);
+  return in;
+}
+
+TEST(ContactEstimator, SignsFollowConventions)
+{
+  // Sliding to the left makes the ground push right; the centre outrunning the rolling speed (braking) makes
+  // it push back; all in the ROS contact frame, whatever the heading.
+  for (double yaw : { 0.0, 0.7, -2.5 })
+  {
+    ContactEstimator e(settings());
+    const ContactEstimateData* d = e.update(rolling(0.0, 1.0, yaw, 0.02, 0.01, 0.0));
+    ASSERT_TRUE(d);
+    EXPECT_NEAR(d->heading, yaw, 1e-12);
+    EXPECT_NEAR(d->slip.x(), -0.02, 1e-12);  // sigma_x = -V_sx / V_r
+    EXPECT_NEAR(d->slip.y(), -0.01, 1e-12);  // ROS sigma_y = -V_sy / V_r too: the sign flip cancels in the ratio
+    EXPECT_LT(d->brush.F_x, 0.0);
+    EXPECT_LT(d->brush.F_y, 0.0);
+    EXPECT_NEAR(d->sliding_velocity.y(), 0.01, 1e-12);
+    EXPECT_GT(d->rolling_resistance_force, 0.0);
+    EXPECT_NEAR((d->epsilon - Eigen::Vector2d(0.0, 1.0)).norm(), 0.0, 1e-12);
+  }
+}
+
+TEST(ContactEstimator, EqualsTheCoreModelsInThePaperFrame)
+{
+  // The same contact computed by hand in the paper frame: (x, y, z)_paper = (x, -y, -z)_ROS.
+  const EstimatorSettings s = settings();
+  ContactEstimator e(s);
+  const double yaw = 0.4, v = 1.2, omega_z = 0.8;
+  const ContactEstimateData* d = e.update(rolling(0.0, v, yaw, 0.03, -0.02, omega_z));
+  ASSERT_TRUE(d);
+  // in the contact frame: rolling along +x at v, sliding (0.03, -0.02) ROS; paper: V_s = (0.03, 0.02),
+  // omega_z,paper = -omega_z
+  const ContactKinematics k = ContactKinematics::fromWheel(Eigen::Vector3d(0.0, -v / 0.1, -omega_z),
+                                                           Eigen::Vector2d(v + 0.03, 0.02), 0.1, 0.0);
+  BrushSteady brush(s.brushParameters());
+  const BrushForces f = brush.update(k, 0.0);
+  EXPECT_NEAR(d->brush.F_x, f.F_x, 1e-9 * std::abs(f.F_x));
+  EXPECT_NEAR(d->brush.F_y, -f.F_y, 1e-9 * std::abs(f.F_y));
+  EXPECT_NEAR(d->brush.M_z, -f.M_z, 1e-9 * std::abs(f.M_z));
+  const Slips sl = computeSlips(k, s.standstill_speed);
+  EXPECT_NEAR(d->spin, -sl.phi, 1e-12);
+  EXPECT_NEAR(d->slip.y(), -sl.sigma.y(), 1e-12);
+  const CylinderState c = CylinderExact(s.cylinderParameters()).solve(v);
+  EXPECT_DOUBLE_EQ(d->rolling_resistance_force, c.F_R * s.effective_length);
+  EXPECT_DOUBLE_EQ(d->rolling_resistance.mu_roll, c.mu_roll);
+}
+
+TEST(ContactEstimator, TurnRateFromTheHeading)
+{
+  ContactEstimator e(settings());
+  const double yaw_rate = 0.6, dt = 0.01;
+  const ContactEstimateData* d = nullptr;
+  for (int i = 0; i < 100; ++i)
+    d = e.update(rolling(i * dt, 1.0, -3.0 + yaw_rate * i * dt, 0.0, 0.0, yaw_rate));  // crosses +-pi
+  ASSERT_TRUE(d);
+  EXPECT_NEAR(d->turn_rate, yaw_rate, 1e-9);
+  EXPECT_NEAR(d->spin_turn, -yaw_rate / 1.0, 1e-9);  // ROS sign of phi_psi = psi_dot / V_r about z up
+  EXPECT_NEAR(d->tilt_ratio, 0.0, 1e-9);            // all of omega_z is turning
+  // a fixed tilt ratio instead
+  EstimatorSettings s = settings();
+  s.tilt_ratio_source = TiltRatioSource::Fixed;
+  s.tilt_ratio = 0.9;
+  ContactEstimator f(s);
+  EXPECT_NEAR(f.update(rolling(0.0, 1.0, 0.0, 0.0, 0.0, 2.0))->turn_rate, 0.2, 1e-12);
+}
+
+TEST(ContactEstimator, TimeHandling)
+{
+  ContactEstimator e(settings(BrushChoice::Transient));
+  ASSERT_TRUE(e.update(rolling(10.0, 1.0, 0.0, 0.05, 0.0, 0.0)));
+  const ContactEstimateData* d = e.update(rolling(10.01, 1.0, 0.0, 0.05, 0.0, 0.0));
+  EXPECT_NEAR(d->dt, 0.01, 1e-12);
+  EXPECT_EQ(d->flags & estimate_flags::kTimeJumpReset, 0u);
+  const double built_up = d->brush.F_x;
+  EXPECT_LT(built_up, 0.0);
+  d = e.update(rolling(10.01, 1.0, 0.0, 0.05, 0.0, 0.0));  // duplicate
+  EXPECT_TRUE(d->flags & estimate_flags::kDuplicateStamp);
+  EXPECT_EQ(d->dt, 0.0);
+  EXPECT_DOUBLE_EQ(d->brush.F_x, built_up);
+  d = e.update(rolling(5.0, 1.0, 0.0, 0.05, 0.0, 0.0));  // a looping bag
+  EXPECT_TRUE(d->flags & estimate_flags::kTimeJumpReset);
+  EXPECT_EQ(d->brush.F_x, 0.0);  // fresh bristles
+  d = e.update(rolling(6.0, 1.0, 0.0, 0.05, 0.0, 0.0));  // a gap
+  EXPECT_TRUE(d->flags & estimate_flags::kGapReset);
+  EXPECT_EQ(d->dt, 0.0);
+}
+
+TEST(ContactEstimator, StandstillHoldsTheFrame)
+{
+  ContactEstimator e(settings(BrushChoice::Transient));
+  e.update(rolling(0.0, 1.0, 1.0, 0.0, 0.0, 0.0));
+  const ContactEstimateData* d = e.update(rolling(0.01, 0.0, 1.0, 0.0, 0.0, 3.0));  // spin in place
+  EXPECT_TRUE(d->flags & estimate_flags::kStandstill);
+  EXPECT_FALSE(d->slips_defined);
+  EXPECT_EQ(d->slip, Eigen::Vector2d::Zero());
+  EXPECT_NEAR(d->heading, 1.0, 1e-12);
+  EXPECT_EQ(d->turn_rate, 0.0);
+  for (int i = 2; i < 100; ++i)
+    d = e.update(rolling(0.01 * i, 0.0, 1.0, 0.0, 0.0, 3.0));
+  EXPECT_TRUE(std::isfinite(d->brush.M_z));
+  EXPECT_LT(d->brush.M_z, 0.0);  // the ground resists the spin (ROS: about z up)
+  EXPECT_TRUE(d->valid());
+  // rolling off in another direction re-initialises the frame
+  d = e.update(rolling(1.0, 1.0, -2.0, 0.0, 0.0, 0.0));
+  EXPECT_TRUE(d->flags & estimate_flags::kHeadingReset);
+  EXPECT_NEAR(d->heading, -2.0, 1e-12);
+}
+
+TEST(ContactEstimator, BadInputChangesNothing)
+{
+  ContactEstimator e(settings(BrushChoice::Transient));
+  e.update(rolling(0.0, 1.0, 0.0, 0.05, 0.0, 0.0));
+  const double before = e.update(rolling(0.01, 1.0, 0.0, 0.05, 0.0, 0.0))->brush.F_x;
+  EstimatorInput bad = rolling(0.02, 1.0, 0.0, 0.05, 0.0, 0.0);
+  bad.omega.z() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(e.update(bad), nullptr);
+  bad = rolling(0.02, 1.0, 0.0, 0.05, 0.0, 0.0);
+  bad.v_contact.x() = 1e300;
+  EXPECT_EQ(e.update(bad), nullptr);
+  bad = rolling(std::numeric_limits<double>::infinity(), 1.0, 0.0, 0.05, 0.0, 0.0);
+  EXPECT_EQ(e.update(bad), nullptr);
+  const ContactEstimateData* d = e.update(rolling(0.02, 1.0, 0.0, 0.05, 0.0, 0.0));
+  ASSERT_TRUE(d);
+  EXPECT_NEAR(d->dt, 0.01, 1e-12);  // the rejected messages did not advance time
+  EXPECT_LE(d->brush.F_x, before);
+}
+
+TEST(ContactEstimator, ConfigureKeepsOrRejects)
+{
+  ContactEstimator e(settings(BrushChoice::Transient));
+  for (int i = 0; i < 20; ++i)
+    e.update(rolling(0.01 * i, 1.0, 0.0, 0.01, 0.0, 0.0));
+  const double before = e.update(rolling(0.2, 1.0, 0.0, 0.01, 0.0, 0.0))->brush.F_x;
+  EstimatorSettings s = settings(BrushChoice::Transient);
+  s.friction = -1.0;
+  EXPECT_THROW(e.configure(s), std::invalid_argument);
+  EXPECT_EQ(e.settings().friction, settings().friction);  // kept
+  s = settings(BrushChoice::Transient);
+  s.friction = 0.81;  // a retune keeps the bristles: no jump
+  e.configure(s);
+  EXPECT_NEAR(e.update(rolling(0.2, 1.0, 0.0, 0.01, 0.0, 0.0))->brush.F_x, before, 1e-9 * std::abs(before));
+  s.resolution = 20;  // a new lattice: fresh bristles
+  e.configure(s);
+  EXPECT_EQ(e.update(rolling(0.2, 1.0, 0.0, 0.01, 0.0, 0.0))->brush.F_x, 0.0);
+  s.brush_model = BrushChoice::Off;
+  s.rolling_resistance_model = RollingResistanceChoice::Off;
+  e.configure(s);
+  const ContactEstimateData* d = e.update(rolling(0.21, 1.0, 0.0, 0.01, 0.0, 0.0));
+  EXPECT_EQ(d->brush.F_x, 0.0);
+  EXPECT_EQ(d->rolling_resistance_force, 0.0);
+  EXPECT_TRUE(d->valid());
+}
+
+}  // namespace
+}  // namespace sphere_contact_estimator
