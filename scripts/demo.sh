@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# README command 1: install, build, and run the main job on the bundled demo scenario.
-# Until the estimator node exists, the main job is the rolling-resistance sweep of the paper's rubber
-# surface (config/rubber_cylinder_paper.yaml) and its plots, Figs. 2 and 3 of Poeschel et al., and the
-# steady-state brush characteristics of Fig. 4 of Romano et al.
+# README command 1: install, build, and run the main job: the contact estimator node on the bundled
+# spherical-robot manoeuvre (launch/demo.launch: accelerate, cruise, turn, brake with slip, spin in place,
+# with sensor noise), headless; it prints a summary per phase and writes every estimate to a CSV. Then the
+# models' characteristic figures: Figs. 2-3 of Poeschel et al. and Fig. 4 of Romano et al.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
@@ -10,6 +10,17 @@ OUT="${1:-${SCE_OUTPUT:-$WS/output}}"
 install_deps
 build
 mkdir -p "$OUT"
+log "contact estimator on the demo manoeuvre (roslaunch sphere_contact_estimator demo.launch)"
+rm -f "$OUT/estimates.csv"
+roslaunch sphere_contact_estimator demo.launch output_csv:="$OUT/estimates.csv" 2>&1 \
+  | grep -vE '^( \* /|\s*$|\.\.\. |started roslaunch server|SUMMARY|=+$|PARAMETERS|NODES|  /|    |auto-starting|process\[|setting /run_id|ROS_MASTER_URI|started core service|\[.*\] killing on exit|shutting down processing monitor|log file:|Initiating shutdown|.*REQUIRED process \[demo_scenario.*has died|process has finished cleanly|done$)' || true
+rows=$(($(wc -l < "$OUT/estimates.csv" 2>/dev/null || echo 1) - 1))
+if [ "$rows" -le 0 ]; then
+  log "the demo produced no estimates"
+  exit 1
+fi
+log "$rows estimates in $OUT/estimates.csv"
+
 log "rolling-resistance sweep and plots -> $OUT"
 /usr/bin/python3 "$REPO/scripts/plot_rolling_resistance.py" --output "$OUT" \
   --config "$REPO/config/rubber_cylinder_paper.yaml"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# README command 2: install, build, and run every test (gtest, and rostest once the node exists).
+# README command 2: install, build, and run every test (gtest and rostest).
 # Prints ctest's summary and exits non-zero on any failure.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
@@ -16,7 +16,8 @@ catkin_test_results "test_results/$PKG" >/dev/null || { [ "$rc" -ne 0 ] || rc=1;
 /usr/bin/python3 - "test_results/$PKG" <<'PY' || true
 import glob, sys, xml.etree.ElementTree as ET
 passed = failed = skipped = 0
-for path in glob.glob(sys.argv[1] + "/gtest-*.xml") + glob.glob(sys.argv[1] + "/rostest-*.xml"):
+# gtest binaries write gtest-*.xml; the test nodes of rostests (gtest, hztest, publishtest) rosunit-*.xml
+for path in glob.glob(sys.argv[1] + "/gtest-*.xml") + glob.glob(sys.argv[1] + "/rosunit-*.xml"):
     for case in ET.parse(path).getroot().iter("testcase"):
         if case.find("failure") is not None or case.find("error") is not None:
             failed += 1

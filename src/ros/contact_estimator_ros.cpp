@@ -85,7 +85,10 @@ ContactEstimatorRos::ContactEstimatorRos(ros::NodeHandle nh, ros::NodeHandle pnh
   reconfigure_server_->setCallback(
       [this](ContactEstimatorConfig& config, uint32_t level) { reconfigureCallback(config, level); });
 
-  odom_sub_ = nh_.subscribe("odom", 100, &ContactEstimatorRos::odometryCallback, this, ros::TransportHints().tcpNoDelay());
+  // A bounded queue deep enough for bursts (a bag, a driver catching up): older messages are dropped beyond it.
+  const int queue_size = std::max(1, pnh_.param("queue_size", 1000));
+  odom_sub_ = nh_.subscribe("odom", queue_size, &ContactEstimatorRos::odometryCallback, this,
+                            ros::TransportHints().tcpNoDelay());
   diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(0.25), [this](const ros::WallTimerEvent&) { updater_.update(); });
   ROS_INFO_STREAM("contact estimator: listening on " << odom_sub_.getTopic() << ", publishing "
                                                      << estimate_pub_.getTopic());
@@ -317,20 +320,28 @@ void ContactEstimatorRos::diagnoseInput(diagnostic_updater::DiagnosticStatusWrap
   status.add("time jumps backwards", time_jumps_);
   const double age = received_ ? (ros::Time::now() - last_received_).toSec() : -1.0;
   status.add("age of last message [s]", age);
-  if (!received_)
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no odometry received yet");
-  else if (stale_timeout_ > 0.0 && age > stale_timeout_)
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "stale input: no odometry for " + std::to_string(age) + " s");
-  else if (rejected_input_ > 0)
-    status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN, "%lu odometry messages rejected (non-finite twist)",
-                    static_cast<unsigned long>(rejected_input_));
-  else
-    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "receiving odometry");
   if (compute_count_)
   {
     status.add("compute time mean [s]", compute_sum_ / compute_count_);
     status.add("compute time max [s]", compute_max_);
   }
+  // what went wrong since the last report, all of it
+  std::string problems;
+  const auto note = [&problems](const std::string& text) { problems += (problems.empty() ? "" : "; ") + text; };
+  if (!received_)
+    note("no odometry received yet");
+  else if (stale_timeout_ > 0.0 && age > stale_timeout_)
+    note("stale input: no odometry for " + std::to_string(age) + " s");
+  if (rejected_input_ > reported_rejected_)
+    note(std::to_string(rejected_input_ - reported_rejected_) + " odometry messages rejected (non-finite twist)");
+  if (time_jumps_ > reported_time_jumps_)
+    note("time went backwards: state reset");
+  reported_rejected_ = rejected_input_;
+  reported_time_jumps_ = time_jumps_;
+  if (problems.empty())
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "receiving odometry");
+  else
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, problems);
 }
 
 void ContactEstimatorRos::diagnoseTf(diagnostic_updater::DiagnosticStatusWrapper& status)
@@ -342,14 +353,15 @@ void ContactEstimatorRos::diagnoseTf(diagnostic_updater::DiagnosticStatusWrapper
   status.add("odometry orientation", from_odometry_);
   status.add("skipped: no orientation", no_orientation_);
   status.add("last tf error", last_tf_error_);
-  if (no_orientation_ > 0)
+  if (no_orientation_ > reported_no_orientation_)
     status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN,
                     "%lu messages skipped: no tf to the ground frame and no valid odometry orientation",
-                    static_cast<unsigned long>(no_orientation_));
+                    static_cast<unsigned long>(no_orientation_ - reported_no_orientation_));
   else if (from_odometry_ > 0 && tf_at_stamp_ + tf_latest_ == 0)
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "no tf: using the odometry's orientation");
   else
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "tf available");
+  reported_no_orientation_ = no_orientation_;
 }
 
 void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWrapper& status)

@@ -2,6 +2,35 @@
 
 namespace sphere_contact_estimator
 {
+// The message constants are the core's bits and enums, so the conversion copies them as they are.
+static_assert(ContactEstimate::FLAG_TIME_JUMP_RESET == estimate_flags::kTimeJumpReset &&
+              ContactEstimate::FLAG_GAP_RESET == estimate_flags::kGapReset &&
+              ContactEstimate::FLAG_DUPLICATE_STAMP == estimate_flags::kDuplicateStamp &&
+              ContactEstimate::FLAG_STANDSTILL == estimate_flags::kStandstill &&
+              ContactEstimate::FLAG_HEADING_RESET == estimate_flags::kHeadingReset);
+static_assert(ContactEstimate::BRUSH_FLAG_STANDSTILL == brush_flags::kStandstill &&
+              ContactEstimate::BRUSH_FLAG_NO_STEADY_STATE_TILT == brush_flags::kNoSteadyStateTilt &&
+              ContactEstimate::BRUSH_FLAG_LINEAR_SATURATED == brush_flags::kLinearSaturated &&
+              ContactEstimate::BRUSH_FLAG_SUBSTEPS_TRUNCATED == brush_flags::kSubstepsTruncated);
+static_assert(ContactEstimate::BRUSH_OFF == static_cast<int>(BrushChoice::Off) &&
+              ContactEstimate::BRUSH_LINEAR == static_cast<int>(BrushChoice::Linear) &&
+              ContactEstimate::BRUSH_STEADY == static_cast<int>(BrushChoice::Steady) &&
+              ContactEstimate::BRUSH_TRANSIENT == static_cast<int>(BrushChoice::Transient));
+static_assert(RollingResistance::FLAG_UNDERDAMPED == cylinder_flags::kUnderdamped &&
+              RollingResistance::FLAG_SELF_INCONSISTENT == cylinder_flags::kSelfInconsistent &&
+              RollingResistance::FLAG_NO_STEADY_STATE == cylinder_flags::kNoSteadyState &&
+              RollingResistance::FLAG_EXPANSION_OUT_OF_RANGE == cylinder_flags::kExpansionOutOfRange &&
+              RollingResistance::FLAG_LARGE_DEFORMATION == cylinder_flags::kLargeDeformation &&
+              RollingResistance::FLAG_TABLE_FALLBACK == cylinder_flags::kTableFallback);
+static_assert(RollingResistance::REGIME_STATIC == static_cast<int>(CylinderRegime::Static) &&
+              RollingResistance::REGIME_CONTACT_PATCH == static_cast<int>(CylinderRegime::ContactPatch) &&
+              RollingResistance::REGIME_POINT_CONTACT == static_cast<int>(CylinderRegime::PointContact) &&
+              RollingResistance::REGIME_NO_STEADY_STATE == static_cast<int>(CylinderRegime::NoSteadyState));
+static_assert(RollingResistance::MODEL_OFF == static_cast<int>(RollingResistanceChoice::Off) &&
+              RollingResistance::MODEL_EXACT == static_cast<int>(RollingResistanceChoice::Exact) &&
+              RollingResistance::MODEL_EXPANSION == static_cast<int>(RollingResistanceChoice::Expansion) &&
+              RollingResistance::MODEL_TABLE == static_cast<int>(RollingResistanceChoice::Table));
+
 void toMessage(const ContactEstimateData& e, ContactEstimate& m)
 {
   m.rolling_speed = e.rolling_speed;

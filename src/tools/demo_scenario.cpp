@@ -240,10 +240,10 @@ int main(int argc, char** argv)
 
   std::printf("\ncontact estimator demo: %zu odometry messages, %zu estimates, mean compute time %.1f us\n",
               samples.size(), received, received ? 1e6 * compute / received : 0.0);
-  std::printf("%-16s %5s %6s %7s %8s %9s %9s %8s %9s %6s\n", "phase", "msgs", "V_r", "slip_x", "spin", "|F_t| max",
+  std::printf("means and maxima per phase: V_r [m/s], slip_x [-], spin [1/m], |F_t| max [N], sliding share max, "
+              "F_R [N], mu_roll max [mm], valid [%%]\n");
+  std::printf("%-16s %5s %6s %7s %8s %9s %9s %8s %9s %6s\n", "phase", "msgs", "V_r", "slip_x", "spin", "|F_t|max",
               "sliding", "F_R", "mu_roll", "valid");
-  std::printf("%-16s %5s %6s %7s %8s %9s %9s %8s %9s %6s\n", "", "", "[m/s]", "[-]", "[1/m]", "[N]", "max", "[N]",
-              "max [mm]", "[%]");
   for (std::size_t k = 0; k < phases.size(); ++k)
   {
     const PhaseStats& p = phases[k];

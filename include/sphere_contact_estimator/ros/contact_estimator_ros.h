@@ -85,6 +85,7 @@ private:
   std::uint64_t received_ = 0, published_ = 0, rejected_input_ = 0, no_orientation_ = 0;
   std::uint64_t tf_at_stamp_ = 0, tf_latest_ = 0, from_odometry_ = 0, time_jumps_ = 0;
   std::uint64_t window_received_ = 0;
+  std::uint64_t reported_rejected_ = 0, reported_time_jumps_ = 0, reported_no_orientation_ = 0;  // at the last report
   ros::WallTime window_start_;
   ros::Time last_received_;
   double compute_sum_ = 0.0, compute_max_ = 0.0;

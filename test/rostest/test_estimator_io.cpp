@@ -1,0 +1,280 @@
+// Integration tests of contact_estimator_node over roscpp: one output per input with its stamp, values
+// equal to the core library's, dynamic_reconfigure, bad input and missing tf.
+
+// STL
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <vector>
+
+// Eigen
+#include <Eigen/Geometry>
+
+// GTest
+#include <gtest/gtest.h>
+
+// ROS
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <dynamic_reconfigure/client.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+
+// Package
+#include "sphere_contact_estimator/ContactEstimate.h"
+#include "sphere_contact_estimator/ContactEstimatorConfig.h"
+#include "sphere_contact_estimator/core/contact_estimator.h"
+#include "sphere_contact_estimator/ros/config_settings.h"
+
+namespace sce = sphere_contact_estimator;
+
+namespace
+{
+const std::string kNode = "/contact_estimator";
+double g_clock = 1000.0;  // stamps increase across tests; each test starts after a gap (> max_step)
+
+class EstimatorIo : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    odom_pub_ = nh_.advertise<nav_msgs::Odometry>("odom", 1000);
+    estimate_sub_ = nh_.subscribe<sce::ContactEstimate>("contact_estimate", 1000, [this](const sce::ContactEstimate::ConstPtr& m) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      estimates_.push_back(*m);
+    });
+    diag_sub_ = nh_.subscribe<diagnostic_msgs::DiagnosticArray>("/diagnostics", 100, [this](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (const auto& s : m->status)
+        diagnostics_[s.name] = s;
+    });
+    ASSERT_TRUE(waitFor([this] { return odom_pub_.getNumSubscribers() > 0 && estimate_sub_.getNumPublishers() > 0; }, 20.0));
+    client_ = std::make_unique<dynamic_reconfigure::Client<sce::ContactEstimatorConfig>>(kNode);
+    ASSERT_TRUE(client_->getCurrentConfiguration(config_, ros::Duration(10.0)));
+    g_clock += 10.0;
+  }
+
+  // Callbacks run on the AsyncSpinner of main(); the predicate is checked under the same lock.
+  bool waitFor(const std::function<bool()>& done, double seconds)
+  {
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
+    while (ros::ok() && ros::WallTime::now() < end)
+    {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (done())
+          return true;
+      }
+      ros::WallDuration(0.002).sleep();
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    return done();
+  }
+
+  // Rolling at v along yaw with the body frame yawed along the path; the centre slides by (along, left).
+  static nav_msgs::Odometry odometry(double stamp, double v, double yaw, double along, double left, double omega_z)
+  {
+    nav_msgs::Odometry o;
+    o.header.stamp = ros::Time(stamp);
+    o.header.frame_id = "odom";
+    o.child_frame_id = "base_link";
+    o.pose.pose.orientation.z = std::sin(0.5 * yaw);
+    o.pose.pose.orientation.w = std::cos(0.5 * yaw);
+    o.twist.twist.angular.y = v / 0.1;  // rolling radius of config/contact_estimator.yaml
+    o.twist.twist.angular.z = omega_z;
+    o.twist.twist.linear.x = v + along;
+    o.twist.twist.linear.y = left;
+    return o;
+  }
+
+  // What the node computes from it, by the core (ground frame = the odometry's, orientation from the pose).
+  static sce::EstimatorInput input(const nav_msgs::Odometry& o)
+  {
+    const auto& q = o.pose.pose.orientation;
+    const Eigen::Quaterniond r = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized();
+    sce::EstimatorInput in;
+    in.stamp = o.header.stamp.toSec();
+    in.omega = r * Eigen::Vector3d(o.twist.twist.angular.x, o.twist.twist.angular.y, o.twist.twist.angular.z);
+    in.v_contact = r * Eigen::Vector3d(o.twist.twist.linear.x, o.twist.twist.linear.y, o.twist.twist.linear.z);
+    return in;
+  }
+
+  bool reconfigure(const std::function<void(sce::ContactEstimatorConfig&)>& change)
+  {
+    sce::ContactEstimatorConfig c = config_;
+    change(c);
+    if (!client_->setConfiguration(c))
+      return false;
+    return client_->getCurrentConfiguration(config_, ros::Duration(5.0));
+  }
+
+  const sce::ContactEstimate* estimateAt(const ros::Time& stamp)
+  {
+    for (const auto& e : estimates_)
+      if (e.header.stamp == stamp)
+        return &e;
+    return nullptr;
+  }
+
+  std::mutex mutex_;  // guards what the callbacks fill
+  ros::NodeHandle nh_;
+  ros::Publisher odom_pub_;
+  ros::Subscriber estimate_sub_, diag_sub_;
+  std::vector<sce::ContactEstimate> estimates_;
+  std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics_;
+  std::unique_ptr<dynamic_reconfigure::Client<sce::ContactEstimatorConfig>> client_;
+  sce::ContactEstimatorConfig config_;
+};
+
+TEST_F(EstimatorIo, OneOutputPerInputWithItsStamp)
+{
+  const int n = 200;
+  for (int i = 0; i < n; ++i)
+  {
+    odom_pub_.publish(odometry(g_clock + 0.01 * i, 1.0, 0.3, 0.01, 0.0, 0.2));
+  }
+  ASSERT_TRUE(waitFor([&] { return estimates_.size() >= static_cast<std::size_t>(n); }, 10.0)) << estimates_.size();
+  ros::WallDuration(0.3).sleep();  // no extras arrive
+  std::lock_guard<std::mutex> lock(mutex_);
+  ASSERT_EQ(estimates_.size(), static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i)
+  {
+    EXPECT_EQ(estimates_[i].header.stamp, ros::Time(g_clock + 0.01 * i)) << i;
+    EXPECT_EQ(estimates_[i].header.frame_id, config_.contact_frame);
+  }
+  g_clock += 0.01 * n;
+}
+
+TEST_F(EstimatorIo, ValuesEqualTheCoreLibrary)
+{
+  // Stamps before every other test's: the node sees time jump back and resets all its state, so it starts
+  // from where a new core estimator starts (the transient bristle lattice included).
+  sce::ContactEstimator core(sce::settingsFromConfig(config_));
+  std::vector<nav_msgs::Odometry> sent;
+  for (int i = 0; i < 60; ++i)  // accelerate while turning and sliding, then brake
+  {
+    const double t = 0.01 * i, v = i < 40 ? 0.05 + 0.04 * i : 1.65 - 0.05 * (i - 40);
+    sent.push_back(odometry(100.0 + t, v, 0.5 * t, i < 40 ? -0.02 : 0.1, 0.02, 0.5));
+    odom_pub_.publish(sent.back());
+  }
+  ASSERT_TRUE(waitFor([&] { return estimates_.size() >= sent.size(); }, 10.0));
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (std::size_t i = 0; i < sent.size(); ++i)
+  {
+    const sce::ContactEstimateData* d = core.update(input(sent[i]));
+    ASSERT_TRUE(d);
+    const sce::ContactEstimate* m = estimateAt(sent[i].header.stamp);
+    ASSERT_TRUE(m) << i;
+    const auto near = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b)); };
+    EXPECT_TRUE(near(m->rolling_speed, d->rolling_speed)) << i;
+    EXPECT_TRUE(near(m->heading, d->heading)) << i;
+    EXPECT_TRUE(near(m->turn_rate, d->turn_rate)) << i;
+    EXPECT_TRUE(near(m->slip.x, d->slip.x()) && near(m->slip.y, d->slip.y())) << i;
+    EXPECT_TRUE(near(m->spin, d->spin) && near(m->spin_turn, d->spin_turn)) << i;
+    EXPECT_TRUE(near(m->brush_force.x, d->brush.F_x) && near(m->brush_force.y, d->brush.F_y)) << i;
+    EXPECT_TRUE(near(m->brush_moment, d->brush.M_z)) << i;
+    EXPECT_TRUE(near(m->sliding_fraction, d->brush.sliding_fraction)) << i;
+    EXPECT_TRUE(near(m->rolling_resistance.force, d->rolling_resistance_force)) << i;
+    EXPECT_TRUE(near(m->rolling_resistance.mu_roll, d->rolling_resistance.mu_roll)) << i;
+    EXPECT_EQ(m->valid, d->valid()) << i;
+    EXPECT_TRUE(m->flags & sce::ContactEstimate::FLAG_ORIENTATION_FROM_ODOMETRY);  // no tf in this test
+  }
+  // physical signs in the ROS contact frame: sliding to the left, the ground pushes right
+  const sce::ContactEstimate* last = estimateAt(sent.back().header.stamp);
+  EXPECT_LT(last->brush_force.y, 0.0);
+  EXPECT_LT(last->brush_force.x, 0.0);  // braking
+}
+
+TEST_F(EstimatorIo, ReconfigureTakesEffectOnTheNextMessage)
+{
+  const double friction = config_.friction;
+  odom_pub_.publish(odometry(g_clock, 1.0, 0.0, 0.2, 0.0, 0.0));
+  odom_pub_.publish(odometry(g_clock + 0.01, 1.0, 0.0, 0.2, 0.0, 0.0));
+  ASSERT_TRUE(waitFor([&] { return estimates_.size() >= 2; }, 5.0));
+  double before;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    before = estimates_.back().brush_force.x;
+  }
+  ASSERT_TRUE(reconfigure([&](sce::ContactEstimatorConfig& c) { c.friction = 0.5 * friction; }));
+  EXPECT_DOUBLE_EQ(config_.friction, 0.5 * friction);
+  odom_pub_.publish(odometry(g_clock + 0.02, 1.0, 0.0, 0.2, 0.0, 0.0));
+  ASSERT_TRUE(waitFor([&] { return estimates_.size() >= 3; }, 5.0));
+  {
+    // full sliding (sigma_x = -0.2): |F_x| = mu F_z, now halved
+    std::lock_guard<std::mutex> lock(mutex_);
+    EXPECT_NEAR(estimates_.back().brush_force.x, 0.5 * before, 0.02 * std::abs(before));
+  }
+  // a configuration the core rejects (no load at all) keeps the previous one
+  ASSERT_TRUE(reconfigure([&](sce::ContactEstimatorConfig& c) {
+    c.robot_mass = 0.0;
+    c.load = 0.0;
+  }));
+  EXPECT_GT(config_.robot_mass, 0.0);
+  EXPECT_DOUBLE_EQ(config_.friction, 0.5 * friction);
+  ASSERT_TRUE(reconfigure([&](sce::ContactEstimatorConfig& c) { c.friction = friction; }));
+  g_clock += 1.0;
+}
+
+TEST_F(EstimatorIo, NonFiniteTwistIsSkippedDiagnosedAndSurvived)
+{
+  nav_msgs::Odometry bad = odometry(g_clock, 1.0, 0.0, 0.0, 0.0, 0.0);
+  bad.twist.twist.angular.y = std::numeric_limits<double>::quiet_NaN();
+  odom_pub_.publish(bad);
+  bad.header.stamp = ros::Time(g_clock + 0.01);
+  bad.twist.twist.angular.y = 10.0;
+  bad.twist.twist.linear.x = std::numeric_limits<double>::infinity();
+  odom_pub_.publish(bad);
+  ASSERT_TRUE(waitFor([&] {
+    const auto it = diagnostics_.find(kNode.substr(1) + ": odometry input");
+    return it != diagnostics_.end() && it->second.level == diagnostic_msgs::DiagnosticStatus::WARN &&
+           it->second.message.find("rejected") != std::string::npos;
+  }, 10.0));
+  // still running, and nothing non-finite reached the topic
+  odom_pub_.publish(odometry(g_clock + 0.02, 1.0, 0.0, 0.0, 0.0, 0.0));
+  ASSERT_TRUE(waitFor([&] { return estimateAt(ros::Time(g_clock + 0.02)) != nullptr; }, 5.0));
+  std::lock_guard<std::mutex> lock(mutex_);
+  EXPECT_EQ(estimateAt(ros::Time(g_clock)), nullptr);
+  EXPECT_EQ(estimateAt(ros::Time(g_clock + 0.01)), nullptr);
+  for (const auto& e : estimates_)
+    EXPECT_TRUE(std::isfinite(e.brush_force.x) && std::isfinite(e.slip.x) && std::isfinite(e.rolling_resistance.force));
+  g_clock += 1.0;
+}
+
+TEST_F(EstimatorIo, MissingTfNeverBlocks)
+{
+  // a ground frame nobody publishes: no tf, and the odometry's orientation is in another frame
+  ASSERT_TRUE(reconfigure([](sce::ContactEstimatorConfig& c) { c.ground_frame = "map"; }));
+  const ros::WallTime start = ros::WallTime::now();
+  for (int i = 0; i < 100; ++i)
+    odom_pub_.publish(odometry(g_clock + 0.01 * i, 1.0, 0.0, 0.0, 0.0, 0.0));
+  ASSERT_TRUE(waitFor([&] {
+    const auto it = diagnostics_.find(kNode.substr(1) + ": tf");
+    return it != diagnostics_.end() && it->second.level == diagnostic_msgs::DiagnosticStatus::WARN;
+  }, 10.0));
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    EXPECT_TRUE(estimates_.empty());  // skipped, not guessed
+  }
+  ASSERT_TRUE(reconfigure([](sce::ContactEstimatorConfig& c) { c.ground_frame = ""; }));
+  odom_pub_.publish(odometry(g_clock + 1.0, 1.0, 0.0, 0.0, 0.0, 0.0));
+  ASSERT_TRUE(waitFor([&] { return !estimates_.empty(); }, 5.0));
+  // 100 skipped messages, two reconfigurations and an estimate within a few seconds: nothing waited on tf
+  EXPECT_LT((ros::WallTime::now() - start).toSec(), 5.0);
+  g_clock += 2.0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_estimator_io");
+  ros::NodeHandle keep_alive;
+  ros::AsyncSpinner spinner(2);  // the dynamic_reconfigure client waits on callbacks
+  spinner.start();
+  const int result = RUN_ALL_TESTS();
+  ros::shutdown();
+  return result;
+}
