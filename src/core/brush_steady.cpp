@@ -33,6 +33,18 @@ BrushSteady::BrushSteady(const BrushParameters& parameters) : BrushSlipModel(par
 
 BrushForces BrushSteady::evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi) const
 {
+  return integrate(sigma, phi, phi_gamma, phi_psi, nullptr);
+}
+
+BrushForces BrushSteady::evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi,
+                                  const Visitor& visit) const
+{
+  return integrate(sigma, phi, phi_gamma, phi_psi, &visit);
+}
+
+BrushForces BrushSteady::integrate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi,
+                                   const Visitor* visit) const
+{
   BrushForces out;
   const double a = p_.a, k = p_.k;
   const int n = p_.resolution;
@@ -120,6 +132,8 @@ BrushForces BrushSteady::evaluate(const Eigen::Vector2d& sigma, double phi, doub
       if (r.sliding)
         sliding_area += dA;
       area += dA;
+      if (visit)
+        (*visit)(node, u, r.sliding);
     }
   }
   // Quadrature weights normalised so that the discrete integral of q_z is F_z (an O(h^2) correction):

@@ -8,7 +8,9 @@
 #include <boost/math/constants/constants.hpp>
 
 // Package
+#include "sphere_contact_estimator/core/brush_steady.h"
 #include "sphere_contact_estimator/core/brush_transient.h"
+#include "sphere_contact_estimator/core/rolling_frame.h"
 
 namespace sphere_contact_estimator
 {
@@ -188,6 +190,7 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   const ContactKinematics kin = ContactKinematics::fromWheel(Eigen::Vector3d(w.x(), -w.y(), -in.omega.z()),
                                                              Eigen::Vector2d(v.x(), -v.y()), R, -psi_dot);
   const Slips sl = computeSlips(kin, settings_.standstill_speed);
+  last_slips_ = sl;
   o.rolling_speed = speed;
   o.sliding_velocity = Eigen::Vector2d(kin.V_s.x(), -kin.V_s.y());
   o.slips_defined = sl.defined;
@@ -219,6 +222,21 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   }
   o.compute_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return &o;
+}
+
+void ContactEstimator::visitBristles(const std::function<void(const Eigen::Vector2d& x, bool sliding)>& visit) const
+{
+  const auto ros = [&visit](const Eigen::Vector2d& x, bool sliding) { visit(Eigen::Vector2d(x.x(), -x.y()), sliding); };
+  if (const auto* transient = dynamic_cast<const BrushTransient*>(brush_.get()))
+    transient->forEachBristle([&](const Eigen::Vector2d& x, const Eigen::Vector2d&, bool sliding) { ros(x, sliding); });
+  else if (const auto* steady = dynamic_cast<const BrushSteady*>(brush_.get()))
+  {
+    if (!last_slips_.defined)
+      return;
+    const RollingFrame frame(last_slips_.epsilon);  // (0, 1) here: the contact frame follows V_r
+    steady->evaluate(frame.toRolling(last_slips_.sigma), last_slips_.phi, last_slips_.phi_gamma, last_slips_.phi_psi,
+                     [&](const Eigen::Vector2d& x, const Eigen::Vector2d&, bool sliding) { ros(frame.toPatch(x), sliding); });
+  }
 }
 
 }  // namespace sphere_contact_estimator

@@ -8,7 +8,6 @@
 #include <tf2_eigen/tf2_eigen.h>
 
 // Package
-#include "sphere_contact_estimator/core/brush_transient.h"
 #include "sphere_contact_estimator/ros/config_settings.h"
 #include "sphere_contact_estimator/ros/estimate_message.h"
 
@@ -256,17 +255,16 @@ void ContactEstimatorRos::publishMarkers(const ContactEstimateData& e)
   disc.scale.z = 1e-3;
   disc.color.r = disc.color.g = disc.color.b = 0.6f;
   disc.color.a = 0.5f;
-  // bristles, green where they adhere and red where they slide (transient model)
+  // bristles, green where they adhere and red where they slide (transient or steady model)
   Marker& zones = markers_.markers[1];
   base(zones, 1, Marker::POINTS);
   zones.scale.x = zones.scale.y = std::max(a / 20.0, 1e-4);
   zones.points.clear();
   zones.colors.clear();
-  if (const auto* transient = dynamic_cast<const BrushTransient*>(estimator_.brushModel()))
-    transient->forEachBristle([&](const Eigen::Vector2d& x, const Eigen::Vector2d&, bool sliding) {
+  estimator_.visitBristles([&](const Eigen::Vector2d& x, bool sliding) {
       geometry_msgs::Point p;
       p.x = x.x();
-      p.y = -x.y();  // paper -> ROS
+      p.y = x.y();
       p.z = 2e-3;
       zones.points.push_back(p);
       std_msgs::ColorRGBA c;

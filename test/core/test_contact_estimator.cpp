@@ -147,6 +147,27 @@ TEST(ContactEstimator, StandstillHoldsTheFrame)
   EXPECT_NEAR(d->heading, -2.0, 1e-12);
 }
 
+TEST(ContactEstimator, BristlesForDrawing)
+{
+  for (BrushChoice model : { BrushChoice::Steady, BrushChoice::Transient })
+  {
+    ContactEstimator e(settings(model));
+    for (int i = 0; i < 50; ++i)
+      e.update(rolling(0.01 * i, 1.0, 0.8, 0.01, 0.02, 0.0));
+    int n = 0, sliding = 0;
+    double max_r = 0.0;
+    e.visitBristles([&](const Eigen::Vector2d& x, bool s) {
+      ++n;
+      sliding += s;
+      max_r = std::max(max_r, x.norm());
+    });
+    EXPECT_GT(n, 100);
+    EXPECT_GT(sliding, 0);
+    EXPECT_LT(sliding, n);
+    EXPECT_LE(max_r, e.settings().patch_radius);
+  }
+}
+
 TEST(ContactEstimator, BadInputChangesNothing)
 {
   ContactEstimator e(settings(BrushChoice::Transient));

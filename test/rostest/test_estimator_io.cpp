@@ -19,6 +19,7 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <dynamic_reconfigure/client.h>
 #include <nav_msgs/Odometry.h>
+#include <visualization_msgs/MarkerArray.h>
 #include <ros/ros.h>
 
 // Package
@@ -263,6 +264,30 @@ TEST_F(EstimatorIo, MissingTfNeverBlocks)
   // 100 skipped messages, two reconfigurations and an estimate within a few seconds: nothing waited on tf
   EXPECT_LT((ros::WallTime::now() - start).toSec(), 5.0);
   g_clock += 2.0;
+}
+
+TEST_F(EstimatorIo, MarkersWhileSubscribed)
+{
+  std::vector<visualization_msgs::MarkerArray> markers;
+  ros::Subscriber sub = nh_.subscribe<visualization_msgs::MarkerArray>("contact_markers", 10, [&](const visualization_msgs::MarkerArray::ConstPtr& m) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    markers.push_back(*m);
+  });
+  ASSERT_TRUE(waitFor([&] { return sub.getNumPublishers() > 0; }, 10.0));
+  ros::WallDuration(0.5).sleep();  // the node sees the subscriber
+  for (int i = 0; i < 20; ++i)
+    odom_pub_.publish(odometry(g_clock + 0.01 * i, 1.0, 0.0, 0.05, 0.02, 0.0));
+  ASSERT_TRUE(waitFor([&] { return !markers.empty(); }, 10.0));
+  std::lock_guard<std::mutex> lock(mutex_);
+  const visualization_msgs::MarkerArray& m = markers.back();
+  ASSERT_EQ(m.markers.size(), 4u);
+  const visualization_msgs::Marker& zones = m.markers[1];
+  EXPECT_EQ(zones.type, visualization_msgs::Marker::POINTS);
+  EXPECT_GT(zones.points.size(), 100u);
+  EXPECT_EQ(zones.points.size(), zones.colors.size());
+  EXPECT_EQ(m.markers[2].type, visualization_msgs::Marker::ARROW);
+  EXPECT_LT(m.markers[2].points[1].x, 0.0);  // the brush force opposes the sliding
+  g_clock += 1.0;
 }
 
 }  // namespace

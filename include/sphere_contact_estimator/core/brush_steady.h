@@ -1,5 +1,8 @@
 #pragma once
 
+// STL
+#include <functional>
+
 // Package
 #include "sphere_contact_estimator/core/brush_model.h"
 
@@ -31,6 +34,15 @@ public:
 
   /// phi_gamma and phi_psi are used with tilt on only.
   BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi) const override;
+
+  /// The same, showing every node of the discretised field to visit(x, u, sliding) (for drawing the zones).
+  using Visitor = std::function<void(const Eigen::Vector2d& x, const Eigen::Vector2d& u, bool sliding)>;
+  BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi,
+                       const Visitor& visit) const;
+
+private:
+  BrushForces integrate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi,
+                        const Visitor* visit) const;
 
   /// Tilt spin below which the paths count as straight: |R_gamma| > 1e9 a.
   static constexpr double kStraightPathTolerance = 1e-9;

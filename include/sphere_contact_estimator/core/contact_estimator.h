@@ -2,6 +2,7 @@
 
 // STL
 #include <cstdint>
+#include <functional>
 #include <memory>
 
 // Eigen
@@ -93,8 +94,13 @@ public:
   /// Forgets the history: time, heading, turn rate, transient bristles.
   void reset();
 
-  /// The brush model (null when off), e.g. to draw its bristles.
+  /// The brush model (null when off).
   const BrushModel* brushModel() const { return brush_.get(); }
+
+  /// Shows the bristles behind the last estimate to visit(x, sliding), x in the ROS contact frame [m]:
+  /// the transient model's lattice, or the steady model's field at the last slips (none for the linear
+  /// model, which has no zones, or when the slips were undefined).
+  void visitBristles(const std::function<void(const Eigen::Vector2d& x, bool sliding)>& visit) const;
 
   /// Heading changes larger than this between two messages re-initialise the frame instead of counting
   /// as a turn rate [rad].
@@ -114,6 +120,7 @@ private:
   bool was_rolling_ = false;
   double heading_ = 0.0;
   double turn_rate_ = 0.0;
+  Slips last_slips_;  // for visitBristles() with the steady model
 };
 
 }  // namespace sphere_contact_estimator
