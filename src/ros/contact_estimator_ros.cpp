@@ -44,6 +44,7 @@ bool lookup(const tf2_ros::Buffer& buffer, const std::string& target, const std:
       ++at_stamp;
       return true;
     }
+    error.clear();  // canTransform appends its reason
     if (buffer.canTransform(target, source, ros::Time(0), &error))
     {
       out = buffer.lookupTransform(target, source, ros::Time(0));
@@ -68,10 +69,12 @@ ContactEstimatorRos::ContactEstimatorRos(ros::NodeHandle nh, ros::NodeHandle pnh
   , config_(ContactEstimatorConfig::__getDefault__())
 {
   contact_frame_ = config_.contact_frame;
-  estimate_pub_ = nh_.advertise<ContactEstimate>("contact_estimate", 50);
-  brush_wrench_pub_ = nh_.advertise<geometry_msgs::WrenchStamped>("brush_wrench", 50);
-  rr_wrench_pub_ = nh_.advertise<geometry_msgs::WrenchStamped>("rolling_resistance_wrench", 50);
-  marker_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("contact_markers", 2);
+  // Queues as deep as the input's, so that a burst in is a burst out, not a loss (bounded all the same).
+  const int queue_size = std::max(1, pnh_.param("queue_size", 1000));
+  estimate_pub_ = nh_.advertise<ContactEstimate>("contact_estimate", queue_size);
+  brush_wrench_pub_ = nh_.advertise<geometry_msgs::WrenchStamped>("brush_wrench", queue_size);
+  rr_wrench_pub_ = nh_.advertise<geometry_msgs::WrenchStamped>("rolling_resistance_wrench", queue_size);
+  marker_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("contact_markers", 2);  // best effort
 
   updater_.setHardwareID("sphere_contact_estimator");
   updater_.add("odometry input", this, &ContactEstimatorRos::diagnoseInput);
@@ -85,7 +88,6 @@ ContactEstimatorRos::ContactEstimatorRos(ros::NodeHandle nh, ros::NodeHandle pnh
       [this](ContactEstimatorConfig& config, uint32_t level) { reconfigureCallback(config, level); });
 
   // A bounded queue deep enough for bursts (a bag, a driver catching up): older messages are dropped beyond it.
-  const int queue_size = std::max(1, pnh_.param("queue_size", 1000));
   odom_sub_ = nh_.subscribe("odom", queue_size, &ContactEstimatorRos::odometryCallback, this,
                             ros::TransportHints().tcpNoDelay());
   diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(0.25), [this](const ros::WallTimerEvent&) { updater_.update(); });
