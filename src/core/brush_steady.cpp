@@ -21,10 +21,6 @@ Eigen::Vector2d rotate(double c, double s, const Eigen::Vector2d& v)
   return { c * v.x() - s * v.y(), s * v.x() + c * v.y() };
 }
 
-double cross(const Eigen::Vector2d& x, const Eigen::Vector2d& u)
-{
-  return x.x() * u.y() - x.y() * u.x();
-}
 }  // namespace
 
 BrushSteady::BrushSteady(const BrushParameters& parameters) : BrushSlipModel(parameters)
@@ -58,11 +54,12 @@ BrushForces BrushSteady::integrate(const Eigen::Vector2d& sigma, double phi, dou
     return out;
   }
   const FrictionCap cap(p_);
-  // drive of eqs. 11/32: sigma + A_phi x, with A_phi x = (-phi y, phi x)
-  const auto drive = [&](const Eigen::Vector2d& x) { return Eigen::Vector2d(sigma.x() - phi * x.y(), sigma.y() + phi * x.x()); };
+  // the drive of eqs. 11/32 is sigma + A_phi x, with A_phi x = (-phi y, phi x)
 
+  // sums per path (Fx, Fy, M_z, load), then times the path's cell area; k applied at the end
   Eigen::Vector2d F = Eigen::Vector2d::Zero();
-  double M_z = 0.0, area = 0.0, sliding_area = 0.0, utilisation = 0.0, load = 0.0;
+  double Fx = 0.0, Fy = 0.0, M_z = 0.0, load = 0.0, M_total = 0.0, load_total = 0.0;
+  double area = 0.0, sliding_area = 0.0, utilisation2 = 0.0;
   const double dtheta = pi / n;
   for (int j = 0; j < n; ++j)
   {
@@ -93,57 +90,93 @@ BrushForces BrushSteady::integrate(const Eigen::Vector2d& sigma, double phi, dou
         return entry - Eigen::Vector2d(t, 0.0);
       return centre + rotate(std::cos(phi_gamma * t), -std::sin(phi_gamma * t), entry - centre);
     };
-    const double cg = std::cos(phi_gamma * h), sg = -std::sin(phi_gamma * h);  // one step along a circle
-    const auto advance = [&](const Eigen::Vector2d& x) -> Eigen::Vector2d {
-      if (straight)
-        return x - Eigen::Vector2d(h, 0.0);
-      return centre + rotate(cg, sg, x - centre);
-    };
     // Nodes at the middle of n equal cells (midpoint rule: none on the patch edge, where q_z = 0). The
     // bristle steps node to node: u <- R(L) u + R(L/2) drive(x_mid) L, with R the turn coupling of eq. 40b
     // (second order; exact on straight paths without coupling, where the drive is linear along the path).
-    const auto step = [&](const Eigen::Vector2d& u, double L, const Eigen::Vector2d& x_mid) -> Eigen::Vector2d {
-      const Eigen::Vector2d g = drive(x_mid) * L;
-      if (phi_psi == 0.0)
-        return u + g;
-      return rotate(std::cos(phi_psi * L), std::sin(phi_psi * L), u) +
-             rotate(std::cos(0.5 * phi_psi * L), std::sin(0.5 * phi_psi * L), g);
-    };
-    const double cp = std::cos(phi_psi * h), sp = std::sin(phi_psi * h);
-    const double cph = std::cos(0.5 * phi_psi * h), sph = std::sin(0.5 * phi_psi * h);
-
-    Eigen::Vector2d node = along(0.5 * h), mid = along(h);
-    Eigen::Vector2d u = step(Eigen::Vector2d::Zero(), 0.5 * h, along(0.25 * h));
+    // Scalar code: this loop is the model's whole cost.
+    const bool coupled = phi_psi != 0.0;
+    double cg = 1.0, sg = 0.0, cp = 1.0, sp = 0.0, cph = 1.0, sph = 0.0;
+    if (!straight)
+    {
+      cg = std::cos(phi_gamma * h);  // one step along the circle: R(-phi_gamma h) about (0, c)
+      sg = -std::sin(phi_gamma * h);
+    }
+    if (coupled)
+    {
+      cp = std::cos(phi_psi * h);
+      sp = std::sin(phi_psi * h);
+      cph = std::cos(0.5 * phi_psi * h);
+      sph = std::sin(0.5 * phi_psi * h);
+    }
+    // area of a cell: width times its length along the path, |v| h, with |v| = |phi_gamma| rho on a circle
+    const double dA = width * h * (straight ? 1.0 : std::abs(phi_gamma) * (entry - centre).norm());
+    const Eigen::Vector2d first_node = along(0.5 * h), first_mid = along(0.25 * h), second_mid = along(h);
+    double nx = first_node.x(), ny = first_node.y(), mx = second_mid.x(), my = second_mid.y();
+    // first half step from the leading edge, undeformed (eq. 8)
+    double ux, uy;
+    {
+      const double L = 0.5 * h, gx = (sigma.x() - phi * first_mid.y()) * L, gy = (sigma.y() + phi * first_mid.x()) * L;
+      const double c = coupled ? std::cos(0.5 * phi_psi * L) : 1.0, s = coupled ? std::sin(0.5 * phi_psi * L) : 0.0;
+      ux = c * gx - s * gy;
+      uy = s * gx + c * gy;
+    }
     for (int i = 0; i < n; ++i)
     {
       if (i > 0)
       {
-        node = advance(node);
-        const Eigen::Vector2d g = drive(mid) * h;
-        u = phi_psi == 0.0 ? Eigen::Vector2d(u + g) : Eigen::Vector2d(rotate(cp, sp, u) + rotate(cph, sph, g));
-        mid = advance(mid);
+        const double gx = (sigma.x() - phi * my) * h, gy = (sigma.y() + phi * mx) * h;  // drive at the step's middle
+        if (coupled)
+        {
+          const double rx = cp * ux - sp * uy, ry = sp * ux + cp * uy;
+          ux = rx + cph * gx - sph * gy;
+          uy = ry + sph * gx + cph * gy;
+        }
+        else
+        {
+          ux += gx;
+          uy += gy;
+        }
+        if (straight)
+        {
+          nx -= h;
+          mx -= h;
+        }
+        else
+        {
+          const double px = nx, py = ny - c, qx = mx, qy = my - c;
+          nx = cg * px - sg * py;
+          ny = c + sg * px + cg * py;
+          mx = cg * qx - sg * qy;
+          my = c + sg * qx + cg * qy;
+        }
       }
-      const FrictionCap::Result r = cap.apply(u, node, drive(node));
-      utilisation = std::max(utilisation, r.utilisation);
-      const double dA = width * h * (straight ? 1.0 : std::abs(phi_gamma) * (node - centre).norm());
-      F += k * u * dA;
-      M_z += k * cross(node, u) * dA;
-      load += r.q_z * dA;
+      const FrictionCap::Result r =
+          cap.apply(ux, uy, nx, ny, sigma.x() - phi * ny, sigma.y() + phi * nx);  // slides along drive(node)
+      utilisation2 = std::max(utilisation2, r.utilisation2);
+      Fx += ux;
+      Fy += uy;
+      M_z += nx * uy - ny * ux;
+      load += r.q_z;
       if (r.sliding)
         sliding_area += dA;
       area += dA;
       if (visit)
-        (*visit)(node, u, r.sliding);
+        (*visit)(Eigen::Vector2d(nx, ny), Eigen::Vector2d(ux, uy), r.sliding);
     }
+    // every cell of a path has the same area
+    F += Eigen::Vector2d(Fx, Fy) * dA;
+    M_total += M_z * dA;
+    load_total += load * dA;
+    Fx = Fy = M_z = load = 0.0;
   }
   // Quadrature weights normalised so that the discrete integral of q_z is F_z (an O(h^2) correction):
   // every bristle obeys |q| <= mu q_z, so then |F_t| <= mu F_z holds exactly, not just to O(h^2).
-  const double eta = load > 0.0 ? p_.F_z / load : 1.0;
-  out.F_x = eta * F.x();
-  out.F_y = eta * F.y();
-  out.M_z = eta * M_z;
+  const double eta = load_total > 0.0 ? p_.F_z / load_total : 1.0;
+  out.F_x = k * eta * F.x();
+  out.F_y = k * eta * F.y();
+  out.M_z = k * eta * M_total;
   out.sliding_fraction = area > 0.0 ? sliding_area / area : 0.0;
-  out.max_utilisation = utilisation;
+  out.max_utilisation = std::sqrt(utilisation2);
   return out;
 }
 

@@ -214,12 +214,13 @@ BrushForces BrushTransient::forces() const
   Eigen::Vector2d F = Eigen::Vector2d::Zero();
   double M_z = 0.0, utilisation = 0.0, load = 0.0;
   int count = 0, sliding = 0;
+  const FrictionCap cap(p_);
   forEachBristle([&](const Eigen::Vector2d& x, const Eigen::Vector2d& u, bool slides) {
     ++count;
     sliding += slides;
     F += u;
     M_z += x.x() * u.y() - x.y() * u.x();
-    const double q_z = p_.qz(x.squaredNorm());
+    const double q_z = cap.qz(x.squaredNorm());
     load += q_z;
     const double bound = p_.mu * q_z / p_.k;
     utilisation = std::max(utilisation, slides ? 1.0 : (bound > 0.0 ? u.norm() / bound : 0.0));

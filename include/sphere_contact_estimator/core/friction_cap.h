@@ -15,43 +15,82 @@ namespace sphere_contact_estimator
 /// deflection exceeds the bound slides, with |q| = mu q_z along the rigid sliding field w (Sect. 6: the
 /// sliding direction neglects u; w = sigma + A_phi x, or -V_s - A_omega_z x in the time domain, which
 /// points the same way). Points on or outside the patch edge carry no deflection.
+/// It runs once per bristle and step, so the constants are folded once and nothing divides.
 class FrictionCap
 {
 public:
-  explicit FrictionCap(const BrushParameters& p) : p_(p), edge2_(p.a * p.a * (1.0 - 1e-12)) {}
+  explicit FrictionCap(const BrushParameters& p)
+    : pressure_(p.pressure), inv_a2_(1.0 / (p.a * p.a)), edge_(1.0 - 1e-12), mu_over_k_(p.mu / p.k)
+  {
+    const double mean = p.F_z / (M_PI * p.a * p.a);  // F_z / (pi a^2)
+    q0_ = pressure_ == PressureDistribution::Parabolic ? 2.0 * mean :
+                                                         (pressure_ == PressureDistribution::Hertzian ? 1.5 * mean : mean);
+  }
 
   struct Result
   {
     bool sliding = false;
-    double utilisation = 0.0;  ///< |q| / (mu q_z) after capping, in [0, 1]
-    double q_z = 0.0;          ///< pressure at the bristle [N/m^2]
+    double utilisation2 = 0.0;  ///< (|q| / (mu q_z))^2 after capping, in [0, 1]
+    double q_z = 0.0;           ///< pressure at the bristle [N/m^2]
   };
+
+  /// Pressure q_z [N/m^2] at squared distance r2 from the patch centre (BrushParameters::qz, folded).
+  double qz(double r2) const
+  {
+    const double t = 1.0 - r2 * inv_a2_;
+    if (t <= 0.0)
+      return 0.0;
+    switch (pressure_)
+    {
+      case PressureDistribution::Parabolic:
+        return q0_ * t;
+      case PressureDistribution::Hertzian:
+        return q0_ * std::sqrt(t);
+      case PressureDistribution::Uniform:
+        return q0_;
+    }
+    return 0.0;
+  }
 
   /// Caps the deflection u [m] of the bristle at x [m] in place; w gives the sliding direction.
   Result apply(Eigen::Vector2d& u, const Eigen::Vector2d& x, const Eigen::Vector2d& w) const
   {
-    const double r2 = x.squaredNorm();
-    if (r2 >= edge2_)
+    return apply(u.x(), u.y(), x.x(), x.y(), w.x(), w.y());
+  }
+
+  /// The same on components, for the models' inner loops.
+  Result apply(double& ux, double& uy, double x, double y, double wx, double wy) const
+  {
+    const double r2 = x * x + y * y;
+    if (r2 * inv_a2_ >= edge_)
     {
-      u.setZero();
+      ux = uy = 0.0;
       return {};
     }
-    const double q_z = p_.qz(r2);
-    const double bound = p_.mu * q_z / p_.k;  // mu q_z / k
-    const double n2 = u.squaredNorm();
-    if (n2 <= bound * bound)
-      return { false, bound > 0.0 ? std::sqrt(n2) / bound : 0.0, q_z };
-    const double wn = w.norm();
-    if (wn > 0.0)
-      u = w * (bound / wn);
+    const double q_z = qz(r2);
+    const double bound = mu_over_k_ * q_z;  // mu q_z / k
+    const double n2 = ux * ux + uy * uy, b2 = bound * bound;
+    if (n2 <= b2)
+      return { false, b2 > 0.0 ? n2 / b2 : 0.0, q_z };
+    const double wn2 = wx * wx + wy * wy;
+    if (wn2 > 0.0)
+    {
+      const double f = bound / std::sqrt(wn2);
+      ux = f * wx;
+      uy = f * wy;
+    }
     else  // at the spin centre the sliding direction is undefined (Sect. 5): keep the bristle's own
-      u *= bound / std::sqrt(n2);
+    {
+      const double f = bound / std::sqrt(n2);
+      ux *= f;
+      uy *= f;
+    }
     return { true, 1.0, q_z };
   }
 
 private:
-  const BrushParameters& p_;
-  double edge2_;
+  PressureDistribution pressure_;
+  double inv_a2_, edge_, mu_over_k_, q0_ = 0.0;
 };
 
 }  // namespace sphere_contact_estimator
