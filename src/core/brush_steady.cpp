@@ -43,7 +43,8 @@ BrushForces BrushSteady::integrate(const Eigen::Vector2d& sigma, double phi, dou
 {
   BrushForces out;
   const double a = p_.a, k = p_.k;
-  const int n = p_.resolution;
+  const int n = p_.resolution;            // paths across the patch
+  const int m = kStepsPerPath * n;        // cells along each path
   if (!p_.tilt)
     phi_gamma = phi_psi = 0.0;  // Sect. 3: straight paths, chi_psi u neglected
   const bool straight = std::abs(phi_gamma) * a < kStraightPathTolerance;
@@ -81,7 +82,7 @@ BrushForces BrushSteady::integrate(const Eigen::Vector2d& sigma, double phi, dou
       const double half_angle = std::atan2(x_entry, std::copysign(1.0, c) * (c - y_entry));
       length = 2.0 * half_angle * std::abs(c);  // angle / |phi_gamma|
     }
-    const double h = length / n;
+    const double h = length / m;
     const Eigen::Vector2d centre(0.0, c), entry(x_entry, y_entry);
     // position after travelling t from the leading edge: a shift by -t, or a rotation about (0, c) by
     // -phi_gamma t (eq. 39b)
@@ -120,7 +121,7 @@ BrushForces BrushSteady::integrate(const Eigen::Vector2d& sigma, double phi, dou
       ux = c * gx - s * gy;
       uy = s * gx + c * gy;
     }
-    for (int i = 0; i < n; ++i)
+    for (int i = 0; i < m; ++i)
     {
       if (i > 0)
       {
