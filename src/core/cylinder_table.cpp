@@ -32,23 +32,17 @@ CylinderTable::CylinderTable(const CylinderParameters& parameters, std::size_t s
     return;
 
   const double du = 1.0 / static_cast<double>(size - 1);
-  std::vector<double> h(size), dh(size), r(size), dr(size), mu(size), dmu(size);
+  table_ = UniformHermite<3>(size);
   for (std::size_t i = 0; i < size; ++i)
   {
     const double u = std::min(static_cast<double>(i) * du, 1.0);
     const double dv_du = 2.0 * range * u;  // v = range u^2
     CylinderExact::Slopes d;
     const CylinderState st = exact_.solve(range * u * u, &d);
-    h[i] = st.h;
-    r[i] = st.xi_minus;
-    mu[i] = st.mu_roll;
-    dh[i] = d.dh_dv * dv_du;
-    dr[i] = d.dxi_minus_dv * dv_du;
-    dmu[i] = d.dmu_roll_dv * dv_du;
+    table_.set(i, 0, st.h, d.dh_dv * dv_du);
+    table_.set(i, 1, st.xi_minus, d.dxi_minus_dv * dv_du);
+    table_.set(i, 2, st.mu_roll, d.dmu_roll_dv * dv_du);
   }
-  h_.emplace(std::move(h), std::move(dh), 0.0, du);
-  xi_minus_.emplace(std::move(r), std::move(dr), 0.0, du);
-  mu_roll_.emplace(std::move(mu), std::move(dmu), 0.0, du);
   size_ = size;
   v_max_ = range;
   inv_v_max_ = 1.0 / range;
@@ -58,22 +52,22 @@ CylinderTable::CylinderTable(const CylinderParameters& parameters, std::size_t s
   {
     const double u = (static_cast<double>(i) + 0.5) * du;
     const CylinderState st = exact_.solve(range * u * u);
-    error_.mu_roll = std::max(error_.mu_roll, std::abs((*mu_roll_)(u)-st.mu_roll));
-    error_.h = std::max(error_.h, std::abs((*h_)(u)-st.h));
-    error_.xi_minus = std::max(error_.xi_minus, std::abs((*xi_minus_)(u)-st.xi_minus));
+    const auto [h, r, mu] = table_(u);
+    error_.mu_roll = std::max(error_.mu_roll, std::abs(mu - st.mu_roll));
+    error_.h = std::max(error_.h, std::abs(h - st.h));
+    error_.xi_minus = std::max(error_.xi_minus, std::abs(r - st.xi_minus));
   }
 }
 
 double CylinderTable::u(double v) const
 {
-  // the library throws past its end point; v <= v_max_ can round u a hair above 1
-  return std::min(std::sqrt(v * inv_v_max_), mu_roll_->domain().second);
+  return std::sqrt(v * inv_v_max_);  // the table clamps u to [0, 1]
 }
 
 double CylinderTable::muRoll(double v) const
 {
-  if (mu_roll_ && v >= 0.0 && v <= v_max_)
-    return (*mu_roll_)(u(v));
+  if (!table_.empty() && v >= 0.0 && v <= v_max_)
+    return table_(u(v))[2];
   return solve(v).mu_roll;
 }
 
@@ -82,21 +76,21 @@ CylinderState CylinderTable::solve(double v) const
   checkSpeed(v);
   if (v == 0.0)
     return staticState();
-  if (!mu_roll_ || v > v_max_)
+  if (table_.empty() || v > v_max_)
   {
     CylinderState st = exact_.solve(v);
     if (st.regime != CylinderRegime::PointContact)  // point contact is closed-form: nothing to tabulate
       st.flags |= cylinder_flags::kTableFallback;
     return st;
   }
-  const double x = u(v);
+  const auto [h, xi_minus, mu] = table_(u(v));
   CylinderState st;
   st.v = v;
   st.regime = CylinderRegime::ContactPatch;
-  st.h = (*h_)(x);
+  st.h = h;
   st.xi_plus = std::sqrt(2.0 * p_.R * st.h);  // eq. 13
-  st.xi_minus = std::min((*xi_minus_)(x), st.xi_plus);
-  st.F_R = (*mu_roll_)(x)*p_.weight() / p_.R;  // eq. 26
+  st.xi_minus = std::min(xi_minus, st.xi_plus);
+  st.F_R = mu * p_.weight() / p_.R;  // eq. 26
   st.mu_roll_error = error_.mu_roll;
   finish(st);
   st.F_N = p_.weight() - st.F_N_impact;  // eq. 9

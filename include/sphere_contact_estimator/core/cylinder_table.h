@@ -5,11 +5,9 @@
 #include <optional>
 #include <vector>
 
-// Boost
-#include <boost/math/interpolators/cubic_hermite.hpp>
-
 // Package
 #include "sphere_contact_estimator/core/cylinder_exact.h"
+#include "sphere_contact_estimator/core/uniform_hermite.h"
 
 namespace sphere_contact_estimator
 {
@@ -62,13 +60,11 @@ private:
   /// Table coordinate u = sqrt(v / v_max) of a speed in [0, v_max].
   double u(double v) const;
 
-  using Spline = boost::math::interpolators::cardinal_cubic_hermite<std::vector<double>>;
-
   CylinderExact exact_;
   double v_max_ = 0.0;
   std::size_t size_ = 0;
   double inv_v_max_ = 0.0;
-  std::optional<Spline> h_, xi_minus_, mu_roll_;  // functions of u = sqrt(v / v_max)
+  UniformHermite<3> table_;  // h, xi_minus, mu_roll as functions of u = sqrt(v / v_max)
   Error error_;
 };
 
