@@ -10,6 +10,7 @@
 
 // Package
 #include "cli/json_output.h"
+#include "sphere_contact_estimator/core/brush_auto.h"
 #include "sphere_contact_estimator/core/brush_model.h"
 #include "sphere_contact_estimator/core/brush_steady.h"
 #include "sphere_contact_estimator/core/brush_transient.h"
@@ -110,7 +111,9 @@ CLI::App* addBrushCommand(CLI::App& app, BrushOptions& o)
       "brush", "Forces and moment of the brush model of a spherical wheel (Romano et al.) at constant slips, paper "
                "frame, epsilon = (0, 1).");
   BrushParameters& p = o.parameters;
-  sub->add_option("--model", o.model, "linear | steady | transient")->capture_default_str();
+  sub->add_option("--model", o.model, "linear | steady | transient | auto")->capture_default_str();
+  sub->add_option("--accuracy-target", p.accuracy_target,
+                  "auto: the cheapest model whose error is below this fraction of mu F_z")->capture_default_str();
   sub->add_option("--sigma-x", o.sigma_x, "longitudinal slip sigma_x")->required();
   sub->add_option("--sigma-y", o.sigma_y, "lateral slip sigma_y")->required();
   sub->add_option("--phi", o.phi, "spin phi [1/m]")->required();
@@ -138,7 +141,7 @@ void runBrushCommand(const BrushOptions& o, std::ostream& out)
 {
   const auto kind = parseBrushModelKind(o.model);
   if (!kind)
-    throw std::invalid_argument("unknown --model '" + o.model + "': use linear, steady or transient");
+    throw std::invalid_argument("unknown --model '" + o.model + "': use linear, steady, transient or auto");
   for (const auto& [x, flag] : { std::pair{ o.sigma_x, "--sigma-x" }, { o.sigma_y, "--sigma-y" }, { o.phi, "--phi" },
                                  { o.tilt_ratio, "--tilt-ratio" } })
     requireFinite(x, flag);
@@ -181,10 +184,17 @@ void runBrushCommand(const BrushOptions& o, std::ostream& out)
   // Constant slips at a rolling speed of 1 m/s along +x: the state after a distance s is the state after
   // s seconds (eqs. 12-13 make it independent of the speed).
   const ContactKinematics kin = ContactKinematics::fromSlips(sigma, o.phi, o.tilt_ratio, 1.0);
-  const BrushForces f = model->update(kin, ran == BrushModelKind::Transient ? distance : 0.0);
+  const bool advances = ran == BrushModelKind::Transient || ran == BrushModelKind::Auto;
+  const BrushForces f = model->update(kin, advances ? distance : 0.0);
 
   nlohmann::ordered_json j;
   j["model"] = toString(ran);
+  if (const auto* automatic = dynamic_cast<const BrushAuto*>(model.get()))
+  {
+    j["model_used"] = toString(automatic->lastModel());
+    j["resolution_used"] = automatic->lastResolution();
+    j["accuracy_target"] = p.accuracy_target;
+  }
   j["Fx"] = number(f.F_x);
   j["Fy"] = number(f.F_y);
   j["Mz"] = number(f.M_z);
@@ -200,7 +210,7 @@ void runBrushCommand(const BrushOptions& o, std::ostream& out)
   j["phi_gamma"] = phi_gamma;
   j["phi_psi"] = phi_psi;
   j["resolution"] = p.resolution;
-  if (ran == BrushModelKind::Transient)
+  if (advances)
     j["distance"] = distance;
   out << j.dump(2) << '\n';
 }

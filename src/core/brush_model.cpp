@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 // Package
+#include "sphere_contact_estimator/core/brush_auto.h"
 #include "sphere_contact_estimator/core/brush_linear.h"
 #include "sphere_contact_estimator/core/brush_steady.h"
 #include "sphere_contact_estimator/core/brush_transient.h"
@@ -23,13 +24,15 @@ const char* toString(BrushModelKind kind)
       return "steady";
     case BrushModelKind::Transient:
       return "transient";
+    case BrushModelKind::Auto:
+      return "auto";
   }
   return "unknown";
 }
 
 std::optional<BrushModelKind> parseBrushModelKind(std::string_view name)
 {
-  for (auto kind : { BrushModelKind::Linear, BrushModelKind::Steady, BrushModelKind::Transient })
+  for (auto kind : { BrushModelKind::Linear, BrushModelKind::Steady, BrushModelKind::Transient, BrushModelKind::Auto })
     if (name == toString(kind))
       return kind;
   return std::nullopt;
@@ -78,6 +81,8 @@ std::unique_ptr<BrushModel> makeBrushModel(BrushModelKind kind, const BrushParam
       return std::make_unique<BrushSteady>(parameters);
     case BrushModelKind::Transient:
       return std::make_unique<BrushTransient>(parameters);
+    case BrushModelKind::Auto:
+      return std::make_unique<BrushAuto>(parameters);
   }
   throw std::invalid_argument("unknown brush model kind");
 }

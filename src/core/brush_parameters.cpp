@@ -46,6 +46,8 @@ void BrushParameters::validate() const
   require(resolution >= 2 && resolution <= 1024, "resolution", resolution, "between 2 and 1024");
   require(finite(standstill_speed) && standstill_speed > 0.0, "standstill speed", standstill_speed,
           "finite and > 0 [m/s]");
+  require(finite(accuracy_target) && accuracy_target > 0.0 && accuracy_target <= 1.0, "accuracy target",
+          accuracy_target, "in (0, 1] (relative to mu F_z)");
 }
 
 double BrushParameters::qz(double r2) const
@@ -68,7 +70,8 @@ double BrushParameters::qz(double r2) const
 bool operator==(const BrushParameters& a, const BrushParameters& b)
 {
   return a.a == b.a && a.k == b.k && a.F_z == b.F_z && a.mu == b.mu && a.pressure == b.pressure && a.tilt == b.tilt &&
-         a.resolution == b.resolution && a.standstill_speed == b.standstill_speed;
+         a.resolution == b.resolution && a.standstill_speed == b.standstill_speed &&
+         a.accuracy_target == b.accuracy_target;
 }
 
 double contactRadiusHertz(double F_z, double R, double E_star)

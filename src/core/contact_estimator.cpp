@@ -8,6 +8,7 @@
 #include <boost/math/constants/constants.hpp>
 
 // Package
+#include "sphere_contact_estimator/core/brush_auto.h"
 #include "sphere_contact_estimator/core/brush_steady.h"
 #include "sphere_contact_estimator/core/brush_transient.h"
 #include "sphere_contact_estimator/core/rolling_frame.h"
@@ -25,8 +26,32 @@ double wrap(double angle)
 
 BrushModelKind kindOf(BrushChoice c)
 {
-  return c == BrushChoice::Linear ? BrushModelKind::Linear :
-                                    (c == BrushChoice::Steady ? BrushModelKind::Steady : BrushModelKind::Transient);
+  switch (c)
+  {
+    case BrushChoice::Linear:
+      return BrushModelKind::Linear;
+    case BrushChoice::Steady:
+      return BrushModelKind::Steady;
+    case BrushChoice::Auto:
+      return BrushModelKind::Auto;
+    default:
+      return BrushModelKind::Transient;
+  }
+}
+
+BrushChoice choiceOf(BrushModelKind k)
+{
+  switch (k)
+  {
+    case BrushModelKind::Linear:
+      return BrushChoice::Linear;
+    case BrushModelKind::Steady:
+      return BrushChoice::Steady;
+    case BrushModelKind::Auto:
+      return BrushChoice::Auto;
+    default:
+      return BrushChoice::Transient;
+  }
 }
 }  // namespace
 
@@ -202,12 +227,21 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   o.epsilon = sl.epsilon;
 
   o.brush_model = settings_.brush_model;
+  o.brush_model_used = BrushChoice::Off;
+  o.brush_resolution = 0;
   o.brush = BrushForces{};
   if (brush_)
   {
     o.patch_radius = brush_->parameters().a;
     o.load = brush_->parameters().F_z;
     o.brush = brush_->update(kin, dt);
+    o.brush_model_used = settings_.brush_model;
+    o.brush_resolution = brush_->kind() == BrushModelKind::Linear ? 0 : brush_->parameters().resolution;
+    if (const auto* automatic = dynamic_cast<const BrushAuto*>(brush_.get()))
+    {
+      o.brush_model_used = choiceOf(automatic->lastModel());
+      o.brush_resolution = automatic->lastResolution();
+    }
     o.brush.F_y = -o.brush.F_y;  // paper -> ROS
     o.brush.M_z = -o.brush.M_z;
   }

@@ -31,6 +31,7 @@ BrushParameters EstimatorSettings::brushParameters() const
   p.tilt = tilt;
   p.resolution = resolution;
   p.standstill_speed = standstill_speed;
+  p.accuracy_target = accuracy_target;
   return p;
 }
 

@@ -12,7 +12,8 @@ EstimatorSettings settingsFromConfig(const ContactEstimatorConfig& c)
   s.robot_mass = c.robot_mass;
   s.load = c.load;
   s.gravity = c.gravity;
-  s.brush_model = static_cast<BrushChoice>(std::clamp(c.brush_model, 0, 3));
+  s.brush_model = static_cast<BrushChoice>(std::clamp(c.brush_model, 0, 4));
+  s.accuracy_target = c.accuracy_target;
   s.patch_radius = c.patch_radius;
   s.contact_modulus = c.contact_modulus;
   s.bristle_stiffness = c.bristle_stiffness;

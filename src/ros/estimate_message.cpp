@@ -15,7 +15,8 @@ static_assert(ContactEstimate::BRUSH_FLAG_STANDSTILL == brush_flags::kStandstill
 static_assert(ContactEstimate::BRUSH_OFF == static_cast<int>(BrushChoice::Off) &&
               ContactEstimate::BRUSH_LINEAR == static_cast<int>(BrushChoice::Linear) &&
               ContactEstimate::BRUSH_STEADY == static_cast<int>(BrushChoice::Steady) &&
-              ContactEstimate::BRUSH_TRANSIENT == static_cast<int>(BrushChoice::Transient));
+              ContactEstimate::BRUSH_TRANSIENT == static_cast<int>(BrushChoice::Transient) &&
+              ContactEstimate::BRUSH_AUTO == static_cast<int>(BrushChoice::Auto));
 static_assert(RollingResistance::FLAG_UNDERDAMPED == cylinder_flags::kUnderdamped &&
               RollingResistance::FLAG_SELF_INCONSISTENT == cylinder_flags::kSelfInconsistent &&
               RollingResistance::FLAG_NO_STEADY_STATE == cylinder_flags::kNoSteadyState &&
@@ -52,6 +53,8 @@ void toMessage(const ContactEstimateData& e, ContactEstimate& m)
   m.epsilon.z = 0.0;
 
   m.brush_model = static_cast<uint8_t>(e.brush_model);
+  m.brush_model_used = static_cast<uint8_t>(e.brush_model_used);
+  m.brush_resolution = static_cast<uint16_t>(e.brush_resolution);
   m.patch_radius = e.patch_radius;
   m.load = e.load;
   m.brush_force.x = e.brush.F_x;

@@ -224,6 +224,26 @@ TEST(ContactEvalBrush, ModelsAgreeWhereTheyShould)
   EXPECT_EQ(b["distance"].get<double>(), 0.2);  // 4a by default
 }
 
+TEST(ContactEvalBrush, AutoMeetsItsTargetAndSaysWhatRan)
+{
+  const std::string point = "--sigma-x 0.05 --sigma-y 0.02 --phi 3.33 " + kFig4;
+  const auto reference = nlohmann::json::parse(contactEval("brush --model steady --resolution 256 " + point).out);
+  for (double target : { 0.05, 0.01, 0.002 })
+  {
+    const Outcome r = contactEval("brush --model auto --accuracy-target " + std::to_string(target) + " " + point);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["model"], "auto");
+    EXPECT_TRUE(j["model_used"] == "linear" || j["model_used"] == "steady") << j["model_used"];
+    EXPECT_NEAR(j["Fx"].get<double>(), reference["Fx"].get<double>(), target * 3000.0) << target;
+    EXPECT_NEAR(j["Fy"].get<double>(), reference["Fy"].get<double>(), target * 3000.0) << target;
+  }
+  // tiny slips: the linear model is exact enough
+  const auto small = nlohmann::json::parse(contactEval("brush --model auto --sigma-x 0.0001 --sigma-y 0 --phi 0 " + kFig4).out);
+  EXPECT_EQ(small["model_used"], "linear");
+  EXPECT_NE(contactEval("brush --model auto --accuracy-target 0 --sigma-x 0 --sigma-y 0 --phi 0 " + kFig4).status, 0);
+}
+
 TEST(ContactEvalBrush, InnerDiscFallsBackToTransient)
 {
   const Outcome r = contactEval("brush --model steady --sigma-x 0 --sigma-y 0 --phi 40 --tilt " + kFig4);

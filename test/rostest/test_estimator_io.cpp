@@ -214,7 +214,19 @@ TEST_F(EstimatorIo, ReconfigureTakesEffectOnTheNextMessage)
   }));
   EXPECT_GT(config_.robot_mass, 0.0);
   EXPECT_DOUBLE_EQ(config_.friction, 0.5 * friction);
-  ASSERT_TRUE(reconfigure([&](sce::ContactEstimatorConfig& c) { c.friction = friction; }));
+  // auto: the message says which model ran
+  ASSERT_TRUE(reconfigure([&](sce::ContactEstimatorConfig& c) {
+    c.friction = friction;
+    c.brush_model = sce::ContactEstimate::BRUSH_AUTO;
+  }));
+  odom_pub_.publish(odometry(g_clock + 0.03, 1.0, 0.0, 0.0005, 0.0, 0.0));
+  ASSERT_TRUE(waitFor([&] { return estimates_.size() >= 4; }, 5.0));
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    EXPECT_EQ(estimates_.back().brush_model, sce::ContactEstimate::BRUSH_AUTO);
+    EXPECT_EQ(estimates_.back().brush_model_used, sce::ContactEstimate::BRUSH_LINEAR);  // a tiny slip
+  }
+  ASSERT_TRUE(reconfigure([&](sce::ContactEstimatorConfig& c) { c.brush_model = sce::ContactEstimate::BRUSH_TRANSIENT; }));
   g_clock += 1.0;
 }
 

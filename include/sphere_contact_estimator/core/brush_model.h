@@ -17,6 +17,7 @@ enum class BrushModelKind
   Linear,     ///< eqs. 61-62: steady state, vanishing sliding (BrushLinear)
   Steady,     ///< steady bristle field on a discretised patch, limited friction (BrushSteady)
   Transient,  ///< the brush PDE in the time domain (BrushTransient)
+  Auto,       ///< the cheapest of the above that meets an accuracy target, per update (BrushAuto)
 };
 
 const char* toString(BrushModelKind kind);

@@ -26,9 +26,10 @@ struct BrushParameters
   bool tilt = false;
   int resolution = 32;    ///< patch discretisation: paths (steady) or lattice spacings across 2a (transient)
   double standstill_speed = 1.0e-3;  ///< V_r below which the slip form is not used [m/s]
+  double accuracy_target = 0.01;     ///< BrushAuto: largest error allowed, relative to mu F_z
 
   /// Throws std::invalid_argument naming the first bad value: a, k > 0; F_z, mu >= 0; all finite;
-  /// 2 <= resolution <= 1024; standstill_speed > 0.
+  /// 2 <= resolution <= 1024; standstill_speed > 0; 0 < accuracy_target <= 1.
   void validate() const;
 
   /// Pressure q_z [N/m^2] at squared distance r2 [m^2] from the patch centre; 0 outside the patch.

@@ -54,7 +54,9 @@ struct ContactEstimateData
   double patch_radius = 0.0;  ///< a [m]
   double load = 0.0;          ///< F_z [N]
 
-  BrushChoice brush_model = BrushChoice::Off;
+  BrushChoice brush_model = BrushChoice::Off;       ///< as configured
+  BrushChoice brush_model_used = BrushChoice::Off;  ///< the model that ran (differs under auto)
+  int brush_resolution = 0;                         ///< its resolution (0: linear or off)
   BrushForces brush;          ///< F_x, F_y [N], M_z [N m] on the sphere, ROS contact frame
 
   RollingResistanceChoice rolling_resistance_model = RollingResistanceChoice::Off;

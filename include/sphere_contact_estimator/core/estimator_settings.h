@@ -16,6 +16,7 @@ enum class BrushChoice : std::uint8_t
   Linear = 1,
   Steady = 2,
   Transient = 3,
+  Auto = 4,  ///< per update the cheapest model that meets accuracy_target (BrushAuto)
 };
 
 /// Which rolling-resistance model a scene runs (or none).
@@ -53,6 +54,7 @@ struct EstimatorSettings
   TiltRatioSource tilt_ratio_source = TiltRatioSource::Estimate;
   double tilt_ratio = 1.0;         ///< chi_gamma for TiltRatioSource::Fixed
   int resolution = 16;
+  double accuracy_target = 0.01;   ///< brush_model auto: largest error, relative to mu F_z
   double standstill_speed = 1e-3;  ///< V_r below which slips are undefined [m/s]
   double turn_rate_time_constant = 0.05;  ///< low-pass of the psi_dot estimate [s]
   double max_step = 0.5;           ///< a longer gap between messages resets the transient state [s]
