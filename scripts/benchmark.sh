@@ -6,7 +6,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 OUT="${SCE_OUTPUT:-$WS/output}"
 install_deps
-build bench_models model_accuracy
+build bench_models model_accuracy node_benchmark contact_estimator_node
 mkdir -p "$OUT"
 BIN="$WS/devel/lib/$PKG"
 log "timing (Google Benchmark, 3 repetitions, medians)"
@@ -14,5 +14,19 @@ log "timing (Google Benchmark, 3 repetitions, medians)"
   --benchmark_format=console --benchmark_out_format=json --benchmark_out="$OUT/bench.json" 2>&1 | grep -v WARNING
 log "accuracy on the operating points"
 "$BIN/model_accuracy" > "$OUT/accuracy.json"
+log "node over roscpp on loopback (the node pinned to one core) and bag replay"
+PORT=$((20000 + RANDOM % 20000))
+export ROS_MASTER_URI="http://localhost:$PORT"
+roscore -p "$PORT" > "$OUT/roscore.log" 2>&1 &
+ROSCORE=$!
+NODE=""
+trap 'kill $NODE $ROSCORE 2>/dev/null || true' EXIT
+until rostopic list > /dev/null 2>&1; do sleep 0.2; done
+rosparam load "$REPO/config/contact_estimator.yaml" /contact_estimator
+taskset -c 1 "$BIN/contact_estimator_node" __name:=contact_estimator > "$OUT/node.log" 2>&1 &
+NODE=$!
+taskset -c 0 "$BIN/node_benchmark" _duration:=2.0 > "$OUT/node.json"
+kill $NODE $ROSCORE 2>/dev/null || true
+wait 2>/dev/null || true
 /usr/bin/python3 "$REPO/scripts/benchmark_report.py" --bench "$OUT/bench.json" --accuracy "$OUT/accuracy.json" \
-  --docs "$REPO/docs"
+  --node "$OUT/node.json" --docs "$REPO/docs"

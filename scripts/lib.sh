@@ -18,7 +18,7 @@ APT_PACKAGES=(
   python3-rostest rosbash python3-rosbag libdiagnostic-updater-dev libnodeletlib-dev libnodelet-dev
   python3-rostopic python3-rosnode python3-rosparam python3-rosmaster rosout python3-roslaunch
   libnodeletlib-tools python3-nav-msgs python3-geometry-msgs python3-diagnostic-msgs python3-nodelet
-  libnav-msgs-dev libgeometry-msgs-dev libdiagnostic-msgs-dev libvisualization-msgs-dev libtf2-dev
+  libnav-msgs-dev libgeometry-msgs-dev libdiagnostic-msgs-dev libvisualization-msgs-dev libtf2-dev librosbag-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libboost-math-dev nlohmann-json3-dev libcli11-dev
   python3-matplotlib python3-yaml
