@@ -61,21 +61,11 @@ void BM_BrushTransientStep(benchmark::State& state)
 }
 BENCHMARK(BM_BrushTransientStep)->ArgsProduct({ { 8, 12, 16, 24, 32, 48 }, { 0, 1 } })->ArgNames({ "resolution", "tilt" });
 
-void BM_CylinderExact(benchmark::State& state)
+// a sweep through the contact-patch regime
+template <class Model>
+void BM_Cylinder(benchmark::State& state)
 {
-  const sce::CylinderExact model(rubber());
-  double v = 0.1;
-  for (auto _ : state)
-  {
-    benchmark::DoNotOptimize(model.solve(v));
-    v = v < 20.0 ? v * 1.1 : 0.1;  // sweep the contact-patch regime
-  }
-}
-BENCHMARK(BM_CylinderExact);
-
-void BM_CylinderExpansion(benchmark::State& state)
-{
-  const sce::CylinderExpansion model(rubber());
+  const Model model(rubber());
   double v = 0.1;
   for (auto _ : state)
   {
@@ -83,19 +73,9 @@ void BM_CylinderExpansion(benchmark::State& state)
     v = v < 20.0 ? v * 1.1 : 0.1;
   }
 }
-BENCHMARK(BM_CylinderExpansion);
-
-void BM_CylinderTable(benchmark::State& state)
-{
-  const sce::CylinderTable model(rubber());
-  double v = 0.1;
-  for (auto _ : state)
-  {
-    benchmark::DoNotOptimize(model.solve(v));
-    v = v < 20.0 ? v * 1.1 : 0.1;
-  }
-}
-BENCHMARK(BM_CylinderTable);
+BENCHMARK_TEMPLATE(BM_Cylinder, sce::CylinderExact)->Name("BM_CylinderExact");
+BENCHMARK_TEMPLATE(BM_Cylinder, sce::CylinderExpansion)->Name("BM_CylinderExpansion");
+BENCHMARK_TEMPLATE(BM_Cylinder, sce::CylinderTable)->Name("BM_CylinderTable");
 
 void BM_CylinderTableMuRoll(benchmark::State& state)
 {

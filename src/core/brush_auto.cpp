@@ -72,7 +72,7 @@ void BrushAuto::reset()
 }
 
 BrushForces BrushAuto::runSteadyFamily(const Slips& s, const Eigen::Vector2d& sigma, double budget, BrushModelKind& model,
-                                       int& resolution)
+                                       int& resolution)  // budget: the error allowed, relative to mu F_z
 {
   if (linearError(p_, sigma, s.phi) <= budget)
   {
@@ -90,7 +90,7 @@ BrushForces BrushAuto::runSteadyFamily(const Slips& s, const Eigen::Vector2d& si
   return steady_[i]->evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi);
 }
 
-void BrushAuto::enterTransient(const ContactKinematics& now)
+void BrushAuto::enterTransient()
 {
   // Warm start: the bristles in the steady state of the last rolling inputs (2.5 transits), so the
   // transient model takes over where the steady one was.
@@ -102,7 +102,6 @@ void BrushAuto::enterTransient(const ContactKinematics& now)
     transient_->update(last_rolling_, t);
     cost_ += transientStepCost(transient_resolution_) * std::ceil(5.0 * transient_resolution_);
   }
-  (void)now;
   in_transient_ = true;
   steady_distance_ = 0.0;
 }
@@ -153,7 +152,7 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
   else if (in_transient_)
     steady_distance_ = 0.0;
   else if (!steady_ok)
-    enterTransient(kin);
+    enterTransient();
 
   if (in_transient_)
   {

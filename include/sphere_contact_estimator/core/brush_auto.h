@@ -63,7 +63,7 @@ public:
 private:
   BrushForces runSteadyFamily(const Slips& s, const Eigen::Vector2d& sigma, double error_budget, BrushModelKind& model,
                               int& resolution);
-  void enterTransient(const ContactKinematics& now);
+  void enterTransient();
 
   BrushLinear linear_;
   std::vector<std::unique_ptr<BrushSteady>> steady_;  // one per ladder resolution
