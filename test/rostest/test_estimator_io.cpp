@@ -278,6 +278,41 @@ TEST_F(EstimatorIo, MissingTfNeverBlocks)
   g_clock += 2.0;
 }
 
+TEST_F(EstimatorIo, HostileInputHasADefinedOutcome)
+{
+  // The outcomes of the README's table, in one sequence; the node answers each as documented and goes on.
+  const double t = g_clock;
+  odom_pub_.publish(odometry(t, 1.0, 0.0, 0.01, 0.0, 0.0));
+  odom_pub_.publish(odometry(t, 1.0, 0.0, 0.01, 0.0, 0.0));        // duplicate stamp: answered, not advanced
+  odom_pub_.publish(odometry(t - 0.5, 1.0, 0.0, 0.01, 0.0, 0.0));  // back in time: answered, state reset
+  nav_msgs::Odometry no_frames = odometry(t + 0.01, 1.0, 0.0, 0.01, 0.0, 0.0);
+  no_frames.header.frame_id.clear();
+  no_frames.child_frame_id.clear();                                   // empty frame ids: the odometry's orientation
+  odom_pub_.publish(no_frames);
+  nav_msgs::Odometry nothing = odometry(t + 0.02, 1.0, 0.0, 0.01, 0.0, 0.0);
+  nothing.header.frame_id.clear();
+  nothing.child_frame_id.clear();
+  nothing.pose.pose.orientation = geometry_msgs::Quaternion();        // and no orientation: skipped
+  odom_pub_.publish(nothing);
+  nav_msgs::Odometry huge = odometry(t + 0.03, 1.0, 0.0, 0.01, 0.0, 0.0);
+  huge.twist.twist.angular.y = 1e300;                                 // faster than light: skipped
+  odom_pub_.publish(huge);
+  for (int i = 0; i < 500; ++i)                                       // a burst: all answered
+    odom_pub_.publish(odometry(t + 0.04 + 1e-4 * i, 1.0, 0.0, 0.01, 0.0, 0.0));
+  ASSERT_TRUE(waitFor([&] { return estimates_.size() >= 504; }, 20.0)) << estimates_.size();
+  ros::WallDuration(0.3).sleep();
+  std::lock_guard<std::mutex> lock(mutex_);
+  ASSERT_EQ(estimates_.size(), 504u);  // 506 sent, the two without a usable input skipped
+  EXPECT_TRUE(estimates_[1].flags & sce::ContactEstimate::FLAG_DUPLICATE_STAMP);
+  EXPECT_TRUE(estimates_[2].flags & sce::ContactEstimate::FLAG_TIME_JUMP_RESET);
+  EXPECT_TRUE(estimates_[3].flags & sce::ContactEstimate::FLAG_ORIENTATION_FROM_ODOMETRY);
+  EXPECT_EQ(estimateAt(ros::Time(t + 0.02)), nullptr);
+  EXPECT_EQ(estimateAt(ros::Time(t + 0.03)), nullptr);
+  for (const auto& e : estimates_)
+    EXPECT_TRUE(std::isfinite(e.brush_force.x) && std::isfinite(e.brush_moment) && std::isfinite(e.slip.y));
+  g_clock += 2.0;
+}
+
 TEST_F(EstimatorIo, MarkersWhileSubscribed)
 {
   std::vector<visualization_msgs::MarkerArray> markers;
