@@ -1,0 +1,46 @@
+// Every brush model on any parameters and kinematics: finite, |F_t| <= mu F_z, or a clear rejection.
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+
+#include "fuzz_input.h"
+#include "sphere_contact_estimator/core/brush_model.h"
+
+using namespace sphere_contact_estimator;
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+  fuzz::Input in(data, size);
+  BrushParameters p;
+  p.a = std::pow(10.0, in.in(-6.0, 3.0));
+  p.k = std::pow(10.0, in.in(-3.0, 20.0));
+  p.F_z = std::pow(10.0, in.in(-6.0, 12.0)) * (in.in(0.0, 1.0) < 0.1 ? 0.0 : 1.0);
+  p.mu = std::pow(10.0, in.in(-3.0, 3.0));
+  p.tilt = in.in(0.0, 1.0) < 0.5;
+  p.resolution = 2 + static_cast<int>(in.in(0.0, 10.0));
+  p.accuracy_target = in.in(1e-4, 1.0);
+  const auto kind = static_cast<BrushModelKind>(static_cast<int>(in.in(0.0, 3.99)));
+  std::unique_ptr<BrushModel> model;
+  try
+  {
+    model = makeBrushModel(kind, p);
+  }
+  catch (const std::invalid_argument&)
+  {
+    return 0;
+  }
+  while (in.more())
+  {
+    ContactKinematics k;
+    k.V_r = Eigen::Vector2d(in.in(-1e3, 1e3), in.in(-1e3, 1e3)) * (in.in(0.0, 1.0) < 0.2 ? 0.0 : 1.0);
+    k.V_s = Eigen::Vector2d(in.in(-1e6, 1e6), in.in(-1e6, 1e6)) * std::pow(10.0, in.in(-9.0, 0.0));
+    k.omega_z = in.in(-1e4, 1e4) * std::pow(10.0, in.in(-9.0, 0.0));
+    k.psi_dot = k.omega_z * in.in(-1.0, 1.0);
+    const BrushForces f = model->update(k, in.in(0.0, 0.01));
+    if (!(std::isfinite(f.F_x) && std::isfinite(f.F_y) && std::isfinite(f.M_z) && std::isfinite(f.sliding_fraction)))
+      std::abort();
+    if (std::hypot(f.F_x, f.F_y) > p.mu * p.F_z * (1.0 + 1e-9) + 1e-300)
+      std::abort();
+  }
+  return 0;
+}

@@ -1,0 +1,31 @@
+// The odometry -> estimate path: any sequence of stamps and twists gives a finite estimate or none.
+#include <cmath>
+#include <cstdlib>
+
+#include "fuzz_input.h"
+#include "sphere_contact_estimator/core/contact_estimator.h"
+
+using namespace sphere_contact_estimator;
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+  fuzz::Input in(data, size);
+  EstimatorSettings s;
+  s.brush_model = static_cast<BrushChoice>(static_cast<int>(in.in(0.0, 4.99)));
+  s.rolling_resistance_model = static_cast<RollingResistanceChoice>(static_cast<int>(in.in(0.0, 3.99)));
+  s.tilt = in.in(0.0, 1.0) < 0.5;
+  s.resolution = 4 + static_cast<int>(in.in(0.0, 6.0));
+  ContactEstimator e(s);
+  while (in.more())
+  {
+    EstimatorInput x;
+    x.stamp = in.next();
+    x.omega = Eigen::Vector3d(in.next(), in.next(), in.next());
+    x.v_contact = Eigen::Vector3d(in.next(), in.next(), in.next());
+    const ContactEstimateData* d = e.update(x);
+    if (d && !(std::isfinite(d->brush.F_x) && std::isfinite(d->brush.M_z) && d->slip.allFinite() &&
+               std::isfinite(d->rolling_resistance_force) && std::isfinite(d->turn_rate) && std::isfinite(d->heading)))
+      std::abort();
+  }
+  return 0;
+}

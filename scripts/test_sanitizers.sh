@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# The core's and the CLI's tests built with AddressSanitizer and UndefinedBehaviorSanitizer (gcc), in a
+# separate build directory: any leak, out-of-bounds access or undefined behaviour fails the run.
+# .ci/run runs it after scripts/test.sh.
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+
+install_deps
+B="${WS}_asan"
+FLAGS="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
+log "building the tests with ASan + UBSan in $B"
+cmake -S "$REPO" -B "$B" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS="$FLAGS" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+  -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" > "$B.configure.log" 2>&1 || { cat "$B.configure.log"; exit 1; }
+TESTS=(test_cylinder test_brush test_contact_estimator test_contact_eval)
+make -C "$B" -j"$(nproc)" "${TESTS[@]}" 2>&1 | grep -E "error|warning: .*sanitiz" || true
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+rc=0
+for t in "${TESTS[@]}"; do
+  log "$t (ASan + UBSan)"
+  "$B/devel/lib/$PKG/$t" --gtest_brief=1 || rc=1
+done
+[ "$rc" -eq 0 ] && log "sanitizer runs clean" || log "sanitizer runs FAILED"
+exit "$rc"
