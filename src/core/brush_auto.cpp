@@ -39,7 +39,7 @@ double BrushAuto::transientError(int resolution)
 
 double BrushAuto::linearError(const BrushParameters& p, const Eigen::Vector2d& sigma, double phi)
 {
-  const double C_sigma = 8.0 / 3.0 * p.k * p.a * p.a * p.a, C_phi = 3.0 * M_PI * p.a / 32.0 * C_sigma;
+  const double C_sigma = BrushLinear::slipStiffness(p), C_phi = BrushLinear::spinStiffness(p);
   const double limit = p.mu * p.F_z;
   if (!(limit > 0.0))
     return INFINITY;

@@ -9,12 +9,21 @@
 
 namespace sphere_contact_estimator
 {
-BrushLinear::BrushLinear(const BrushParameters& parameters) : BrushSlipModel(parameters)
+double BrushLinear::slipStiffness(const BrushParameters& p)
 {
-  const double a = p_.a, k = p_.k;
-  C_sigma_ = 8.0 / 3.0 * k * a * a * a;                    // eq. 62
-  C_phi_ = 3.0 * boost::math::double_constants::pi * a / 32.0 * C_sigma_;             // eq. 62
-  C_Mphi_ = 8.0 / 15.0 * k * a * a * a * a * a;           // derived above, not in the paper
+  return 8.0 / 3.0 * p.k * p.a * p.a * p.a;  // eq. 62
+}
+
+double BrushLinear::spinStiffness(const BrushParameters& p)
+{
+  return 3.0 * boost::math::double_constants::pi * p.a / 32.0 * slipStiffness(p);  // eq. 62
+}
+
+BrushLinear::BrushLinear(const BrushParameters& parameters)
+  : BrushSlipModel(parameters), C_sigma_(slipStiffness(p_)), C_phi_(spinStiffness(p_))
+{
+  const double a = p_.a;
+  C_Mphi_ = 8.0 / 15.0 * p_.k * a * a * a * a * a;  // derived above, not in the paper
 }
 
 BrushForces BrushLinear::evaluate(const Eigen::Vector2d& sigma, double phi) const

@@ -87,7 +87,9 @@ TEST(BrushExtremes, HugeSlipsAndSpinsSaturate)
         SCOPED_TRACE(testing::Message() << toString(kind) << " tilt " << tilt << " sigma (" << sx << ", " << sy << ") phi " << phi);
         expectSound(f, p);
         if (phi == 0.0)  // full sliding along -sigma: the whole mu F_z
+        {
           EXPECT_NEAR(std::hypot(f.F_x, f.F_y), p.mu * p.F_z, 0.01 * p.mu * p.F_z);
+        }
       }
     }
   }
@@ -112,7 +114,9 @@ TEST(BrushExtremes, ContinuousThroughTheStandstillThreshold)
     const BrushForces f = model.update(k, 0.01);
     expectSound(f, p);
     if (i > 0)
+    {
       EXPECT_LT(forceDistance(f, previous, p), 0.02) << "step " << i << " V " << V;
+    }
     previous = f;
     saw_transient |= model.lastModel() == BrushModelKind::Transient;
     saw_steady |= model.lastModel() != BrushModelKind::Transient;

@@ -26,6 +26,10 @@ public:
   BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi) const override;
   BrushForces evaluate(const Eigen::Vector2d& sigma, double phi) const;
 
+  /// eq. 62 for any parameters: C_sigma = 8/3 k a^3 [N], C_phi = 3 pi a / 32 C_sigma [N m].
+  static double slipStiffness(const BrushParameters& p);
+  static double spinStiffness(const BrushParameters& p);
+
   double C_sigma() const { return C_sigma_; }      ///< [N]
   double C_phi() const { return C_phi_; }          ///< [N m]
   double C_Msigma_y() const { return C_phi_; }     ///< [N m]
