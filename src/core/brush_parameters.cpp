@@ -1,24 +1,22 @@
 #include "sphere_contact_estimator/core/brush_parameters.h"
+#include "parameter_check.h"
 
 // STL
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
+
+// Boost
+#include <boost/math/constants/constants.hpp>
 
 namespace sphere_contact_estimator
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
+using boost::math::double_constants::pi;
 
 void require(bool ok, const char* name, double value, const char* rule)
 {
-  if (ok)
-    return;
-  std::ostringstream msg;
-  msg.precision(17);
-  msg << "invalid brush parameter " << name << " = " << value << ": must be " << rule;
-  throw std::invalid_argument(msg.str());
+  detail::requireParameter(ok, "brush ", name, value, rule);
 }
 }  // namespace
 
@@ -58,11 +56,11 @@ double BrushParameters::qz(double r2) const
   switch (pressure)
   {
     case PressureDistribution::Parabolic:
-      return 2.0 * F_z / (kPi * a * a) * t;
+      return 2.0 * F_z / (pi * a * a) * t;
     case PressureDistribution::Hertzian:
-      return 1.5 * F_z / (kPi * a * a) * std::sqrt(t);
+      return 1.5 * F_z / (pi * a * a) * std::sqrt(t);
     case PressureDistribution::Uniform:
-      return F_z / (kPi * a * a);
+      return F_z / (pi * a * a);
   }
   return 0.0;
 }

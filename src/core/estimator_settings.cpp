@@ -1,8 +1,8 @@
 #include "sphere_contact_estimator/core/estimator_settings.h"
+#include "parameter_check.h"
 
 // STL
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 namespace sphere_contact_estimator
@@ -11,12 +11,7 @@ namespace
 {
 void require(bool ok, const char* name, double value, const char* rule)
 {
-  if (ok)
-    return;
-  std::ostringstream msg;
-  msg.precision(17);
-  msg << "invalid parameter " << name << " = " << value << ": must be " << rule;
-  throw std::invalid_argument(msg.str());
+  detail::requireParameter(ok, "", name, value, rule);
 }
 }  // namespace
 
