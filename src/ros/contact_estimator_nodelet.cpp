@@ -10,9 +10,12 @@ namespace sphere_contact_estimator
 {
 class ContactEstimatorNodelet : public nodelet::Nodelet
 {
+  // The multi-threaded handles: in a manager with worker threads, a reconfigure (which may rebuild the
+  // rolling-resistance table) and the diagnostics run beside the odometry instead of queueing behind it.
+  // roscpp still runs one odometry callback at a time, in order; ContactEstimatorRos guards its state.
   void onInit() override
   {
-    estimator_ = std::make_unique<ContactEstimatorRos>(getNodeHandle(), getPrivateNodeHandle());
+    estimator_ = std::make_unique<ContactEstimatorRos>(getMTNodeHandle(), getMTPrivateNodeHandle());
   }
 
   std::unique_ptr<ContactEstimatorRos> estimator_;
