@@ -20,7 +20,7 @@ APT_PACKAGES=(
   libnodeletlib-tools python3-nav-msgs python3-geometry-msgs python3-diagnostic-msgs python3-nodelet
   libnav-msgs-dev libgeometry-msgs-dev libdiagnostic-msgs-dev libvisualization-msgs-dev libtf2-dev librosbag-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libboost-math-dev nlohmann-json3-dev libcli11-dev
+  libboost-math-dev nlohmann-json3-dev libcli11-dev libyaml-cpp-dev libtf2-msgs-dev libroslib-dev libstd-srvs-dev
   python3-matplotlib python3-yaml
 )
 

@@ -230,6 +230,7 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   o.brush_model_used = BrushChoice::Off;
   o.brush_resolution = 0;
   o.brush = BrushForces{};
+  o.friction = 0.0;
   if (brush_)
   {
     o.patch_radius = brush_->parameters().a;
@@ -244,7 +245,10 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
     }
     o.brush.F_y = -o.brush.F_y;  // paper -> ROS
     o.brush.M_z = -o.brush.M_z;
+    o.friction = brush_->parameters().mu;
   }
+  // a scalar: the same in both frames (ROS omega_z is about z up, like M_z)
+  o.brush_power = -(o.brush.F_x * o.sliding_velocity.x() + o.brush.F_y * o.sliding_velocity.y() + o.brush.M_z * in.omega.z());
   o.rolling_resistance_model = settings_.rolling_resistance_model;
   o.rolling_resistance = CylinderState{};
   o.rolling_resistance_force = o.rolling_resistance_torque = 0.0;
@@ -254,6 +258,7 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
     o.rolling_resistance_force = o.rolling_resistance.F_R * cylinder_->parameters().L;
     o.rolling_resistance_torque = o.rolling_resistance.torque * cylinder_->parameters().L;
   }
+  o.rolling_resistance_power = o.rolling_resistance_force * speed;
   o.compute_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return &o;
 }

@@ -4,71 +4,19 @@
 #include <algorithm>
 #include <cmath>
 
-// ROS
-#include <tf2_eigen/tf2_eigen.h>
-
 // Package
-#include "sphere_contact_estimator/ros/config_settings.h"
-#include "sphere_contact_estimator/ros/estimate_message.h"
+#include "sphere_contact_estimator/ros/parameter_text.h"
 
 namespace sphere_contact_estimator
 {
-namespace
-{
-bool validQuaternion(const geometry_msgs::Quaternion& q, Eigen::Quaterniond& out)
-{
-  out = Eigen::Quaterniond(q.w, q.x, q.y, q.z);
-  const double n = out.norm();
-  if (!(std::isfinite(n) && n > 0.5 && n < 1.5))  // unset (all zero) or garbage
-    return false;
-  out.normalize();
-  return true;
-}
-
-Eigen::Vector3d vector(const geometry_msgs::Vector3& v)
-{
-  return { v.x, v.y, v.z };
-}
-
-// Transform at the stamp, else tf's latest; never waits. Counts which one it was.
-bool lookup(const tf2_ros::Buffer& buffer, const std::string& target, const std::string& source, const ros::Time& stamp,
-            geometry_msgs::TransformStamped& out, std::uint64_t& at_stamp, std::uint64_t& latest, std::string& error)
-{
-  if (target.empty() || source.empty())
-    return false;
-  try
-  {
-    if (buffer.canTransform(target, source, stamp))
-    {
-      out = buffer.lookupTransform(target, source, stamp);
-      ++at_stamp;
-      return true;
-    }
-    error.clear();  // canTransform appends its reason
-    if (buffer.canTransform(target, source, ros::Time(0), &error))
-    {
-      out = buffer.lookupTransform(target, source, ros::Time(0));
-      ++latest;
-      return true;
-    }
-  }
-  catch (const tf2::TransformException& e)
-  {
-    error = e.what();
-  }
-  return false;
-}
-}  // namespace
-
 ContactEstimatorRos::ContactEstimatorRos(ros::NodeHandle nh, ros::NodeHandle pnh)
   : nh_(nh)
   , pnh_(pnh)
   , tf_listener_(tf_buffer_)
   , updater_(nh, pnh, pnh.getNamespace())
-  , estimator_(settingsFromConfig(ContactEstimatorConfig::__getDefault__()))
+  , estimator_(ContactEstimatorConfig::__getDefault__())
   , config_(ContactEstimatorConfig::__getDefault__())
 {
-  contact_frame_ = config_.contact_frame;
   // Queues as deep as the input's, so that a burst in is a burst out, not a loss (bounded all the same).
   const int queue_size = std::max(1, pnh_.param("queue_size", 1000));
   estimate_pub_ = nh_.advertise<ContactEstimate>("contact_estimate", queue_size);
@@ -82,6 +30,15 @@ ContactEstimatorRos::ContactEstimatorRos(ros::NodeHandle nh, ros::NodeHandle pnh
   updater_.add("contact models", this, &ContactEstimatorRos::diagnoseModels);
   window_start_ = ros::WallTime::now();
 
+  // Numbers that YAML 1.1 read as text would otherwise be dropped by the server in silence.
+  bool all_repaired = true;
+  for (const std::string& line : repairTextParameters(pnh_, all_repaired))
+  {
+    if (all_repaired)
+      ROS_WARN_STREAM("contact estimator: parameter " << line);
+    else
+      ROS_ERROR_STREAM("contact estimator: parameter " << line);
+  }
   // The server reads the private parameters (config/contact_estimator.yaml) and calls back once now.
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<ContactEstimatorConfig>>(reconfigure_mutex_, pnh_);
   reconfigure_server_->setCallback(
@@ -100,7 +57,7 @@ void ContactEstimatorRos::reconfigureCallback(ContactEstimatorConfig& config, ui
   std::lock_guard<std::mutex> lock(mutex_);
   try
   {
-    estimator_.configure(settingsFromConfig(config));
+    estimator_.configure(config);
   }
   catch (const std::exception& e)
   {
@@ -109,52 +66,11 @@ void ContactEstimatorRos::reconfigureCallback(ContactEstimatorConfig& config, ui
     return;
   }
   config_ = config;
-  ground_frame_ = config.ground_frame;
-  contact_frame_ = config.contact_frame.empty() ? std::string("contact_patch") : config.contact_frame;
-  publish_tf_ = config.publish_tf;
   stale_timeout_ = config.stale_timeout;
-  const EstimatorSettings& s = estimator_.settings();
+  const EstimatorSettings& s = estimator_.estimator().settings();
   ROS_INFO("contact estimator: brush model %d (a = %.4g m, F_z = %.4g N, tilt %s), rolling resistance model %d",
            config.brush_model, s.brushParameters().a, s.verticalLoad(), s.tilt ? "on" : "off",
            config.rolling_resistance_model);
-}
-
-bool ContactEstimatorRos::groundPose(const nav_msgs::Odometry& msg, const std::string& ground,
-                                     Eigen::Quaterniond& rotation, Eigen::Vector3d& centre, bool& have_centre)
-{
-  geometry_msgs::TransformStamped t;
-  const ros::Time& stamp = msg.header.stamp;
-  // tf from the twist's frame (the sphere's, whose origin is its centre)
-  if (lookup(tf_buffer_, ground, msg.child_frame_id, stamp, t, tf_at_stamp_, tf_latest_, last_tf_error_))
-  {
-    rotation = tf2::transformToEigen(t).rotation();
-    centre = vector(t.transform.translation);
-    have_centre = true;
-    return true;
-  }
-  // the odometry's own pose, moved into the ground frame by tf when that is another frame
-  Eigen::Quaterniond q;
-  if (!validQuaternion(msg.pose.pose.orientation, q))
-    return false;
-  const Eigen::Vector3d position(msg.pose.pose.position.x, msg.pose.pose.position.y, msg.pose.pose.position.z);
-  if (ground == msg.header.frame_id)
-  {
-    rotation = q;
-    centre = position;
-    have_centre = position.allFinite();
-    ++from_odometry_;
-    return true;
-  }
-  if (lookup(tf_buffer_, ground, msg.header.frame_id, stamp, t, tf_at_stamp_, tf_latest_, last_tf_error_))
-  {
-    const Eigen::Isometry3d T = tf2::transformToEigen(t);
-    rotation = Eigen::Quaterniond(T.rotation()) * q;
-    centre = T * position;
-    have_centre = centre.allFinite();
-    ++from_odometry_;
-    return true;
-  }
-  return false;
 }
 
 void ContactEstimatorRos::odometryCallback(const nav_msgs::Odometry::ConstPtr& msg)
@@ -163,86 +79,49 @@ void ContactEstimatorRos::odometryCallback(const nav_msgs::Odometry::ConstPtr& m
   ++received_;
   ++window_received_;
   last_received_ = ros::Time::now();
-  const std::string& ground = ground_frame_.empty() ? msg->header.frame_id : ground_frame_;
-  Eigen::Quaterniond q;
-  Eigen::Vector3d centre;
-  bool have_centre = false;
-  const std::uint64_t from_odometry = from_odometry_;
-  if (!groundPose(*msg, ground, q, centre, have_centre))
+  SkipReason reason;
+  const EstimateOutputs* out = estimator_.process(*msg, tf_buffer_, reason);
+  if (!out)
   {
-    ++no_orientation_;
-    ROS_WARN_THROTTLE(5.0, "contact estimator: no rotation from '%s' to the ground frame '%s' (tf: %s) and no valid "
-                           "odometry orientation; message skipped",
-                      msg->child_frame_id.c_str(), ground.c_str(), last_tf_error_.c_str());
+    if (reason == SkipReason::NoOrientation)
+      ROS_WARN_THROTTLE(5.0, "contact estimator: no rotation from '%s' to the ground frame '%s' (tf: %s) and no "
+                             "valid odometry orientation; message skipped",
+                        msg->child_frame_id.c_str(),
+                        (estimator_.groundFrame().empty() ? msg->header.frame_id : estimator_.groundFrame()).c_str(),
+                        estimator_.lastTfError().c_str());
+    else
+      ROS_WARN_THROTTLE(5.0, "contact estimator: odometry with a non-finite or impossible twist or stamp skipped");
     return;
   }
-  // The twist is in child_frame_id (REP 105): into the gravity-aligned ground frame.
-  EstimatorInput in;
-  in.stamp = msg->header.stamp.toSec();
-  in.omega = q * vector(msg->twist.twist.angular);
-  in.v_contact = q * vector(msg->twist.twist.linear);
-  const ContactEstimateData* e = estimator_.update(in);
-  if (!e)
-  {
-    ++rejected_input_;
-    ROS_WARN_THROTTLE(5.0, "contact estimator: odometry with a non-finite or impossible twist or stamp skipped");
-    return;
-  }
-  if (e->flags & estimate_flags::kTimeJumpReset)
-  {
-    ++time_jumps_;
+  const ContactEstimateData& e = *out->data;
+  if (e.flags & estimate_flags::kTimeJumpReset)
     ROS_WARN("contact estimator: time went backwards (a looping bag?): state reset");
-  }
 
-  estimate_msg_.header.stamp = msg->header.stamp;
-  estimate_msg_.header.frame_id = contact_frame_;
-  toMessage(*e, estimate_msg_);
-  if (from_odometry_ != from_odometry)
-    estimate_msg_.flags |= ContactEstimate::FLAG_ORIENTATION_FROM_ODOMETRY;
-  estimate_pub_.publish(estimate_msg_);
-  brush_wrench_msg_.header = estimate_msg_.header;
-  brushWrench(*e, brush_wrench_msg_);
-  brush_wrench_pub_.publish(brush_wrench_msg_);
-  rr_wrench_msg_.header = estimate_msg_.header;
-  rollingResistanceWrench(*e, rr_wrench_msg_);
-  rr_wrench_pub_.publish(rr_wrench_msg_);
+  estimate_pub_.publish(out->estimate);
+  brush_wrench_pub_.publish(out->brush_wrench);
+  rr_wrench_pub_.publish(out->rolling_resistance_wrench);
   ++published_;
-
-  // The contact point, R_r below the centre along gravity, x along the rolling direction. One broadcast per
-  // stamp: re-sending an unchanged stamp is what makes tf print TF_REPEATED_DATA.
-  if (publish_tf_ && have_centre && msg->header.stamp != last_broadcast_)
-  {
-    geometry_msgs::TransformStamped& t = contact_tf_;
-    t.header.stamp = msg->header.stamp;
-    t.header.frame_id = ground;
-    t.child_frame_id = contact_frame_;
-    t.transform.translation.x = centre.x();
-    t.transform.translation.y = centre.y();
-    t.transform.translation.z = centre.z() - estimator_.settings().rolling_radius;
-    t.transform.rotation.z = std::sin(0.5 * e->heading);
-    t.transform.rotation.w = std::cos(0.5 * e->heading);
-    tf_broadcaster_.sendTransform(t);
-    last_broadcast_ = msg->header.stamp;
-  }
+  if (out->has_transform)
+    tf_broadcaster_.sendTransform(out->contact_transform);
   if (marker_pub_.getNumSubscribers() > 0)
-    publishMarkers(*e);
+    publishMarkers(e, out->estimate.header);
 
-  compute_sum_ += e->compute_time;
-  compute_max_ = std::max(compute_max_, e->compute_time);
+  compute_sum_ += e.compute_time;
+  compute_max_ = std::max(compute_max_, e.compute_time);
   ++compute_count_;
-  last_brush_flags_ = e->brush.flags;
-  last_rr_flags_ = e->rolling_resistance.flags;
-  last_regime_ = static_cast<std::uint8_t>(e->rolling_resistance.regime);
-  last_flags_ = estimate_msg_.flags;
+  last_brush_flags_ = e.brush.flags;
+  last_rr_flags_ = e.rolling_resistance.flags;
+  last_regime_ = static_cast<std::uint8_t>(e.rolling_resistance.regime);
+  last_flags_ = out->estimate.flags;
   have_estimate_ = true;
 }
 
-void ContactEstimatorRos::publishMarkers(const ContactEstimateData& e)
+void ContactEstimatorRos::publishMarkers(const ContactEstimateData& e, const std_msgs::Header& header)
 {
   using visualization_msgs::Marker;
   markers_.markers.resize(4);
   const auto base = [&](Marker& m, int id, int type) {
-    m.header = estimate_msg_.header;
+    m.header = header;
     m.ns = "contact";
     m.id = id;
     m.type = type;
@@ -263,7 +142,7 @@ void ContactEstimatorRos::publishMarkers(const ContactEstimateData& e)
   zones.scale.x = zones.scale.y = std::max(a / 20.0, 1e-4);
   zones.points.clear();
   zones.colors.clear();
-  estimator_.visitBristles([&](const Eigen::Vector2d& x, bool sliding) {
+  estimator_.estimator().visitBristles([&](const Eigen::Vector2d& x, bool sliding) {
       geometry_msgs::Point p;
       p.x = x.x();
       p.y = x.y();
@@ -316,8 +195,9 @@ void ContactEstimatorRos::diagnoseInput(diagnostic_updater::DiagnosticStatusWrap
   status.add("rate [Hz]", rate);
   status.add("received", received_);
   status.add("published", published_);
-  status.add("rejected (non-finite or impossible)", rejected_input_);
-  status.add("time jumps backwards", time_jumps_);
+  const OdometryEstimator::Counters& c = estimator_.counters();
+  status.add("rejected (non-finite or impossible)", c.rejected);
+  status.add("time jumps backwards", c.time_jumps);
   const double age = received_ ? (ros::Time::now() - last_received_).toSec() : -1.0;
   status.add("age of last message [s]", age);
   if (compute_count_)
@@ -332,12 +212,12 @@ void ContactEstimatorRos::diagnoseInput(diagnostic_updater::DiagnosticStatusWrap
     note("no odometry received yet");
   else if (stale_timeout_ > 0.0 && age > stale_timeout_)
     note("stale input: no odometry for " + std::to_string(age) + " s");
-  if (rejected_input_ > reported_rejected_)
-    note(std::to_string(rejected_input_ - reported_rejected_) + " odometry messages rejected (non-finite twist)");
-  if (time_jumps_ > reported_time_jumps_)
+  if (c.rejected > reported_rejected_)
+    note(std::to_string(c.rejected - reported_rejected_) + " odometry messages rejected (non-finite twist)");
+  if (c.time_jumps > reported_time_jumps_)
     note("time went backwards: state reset");
-  reported_rejected_ = rejected_input_;
-  reported_time_jumps_ = time_jumps_;
+  reported_rejected_ = c.rejected;
+  reported_time_jumps_ = c.time_jumps;
   if (problems.empty())
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "receiving odometry");
   else
@@ -347,21 +227,23 @@ void ContactEstimatorRos::diagnoseInput(diagnostic_updater::DiagnosticStatusWrap
 void ContactEstimatorRos::diagnoseTf(diagnostic_updater::DiagnosticStatusWrapper& status)
 {
   std::lock_guard<std::mutex> lock(mutex_);
-  status.add("ground frame", ground_frame_.empty() ? std::string("(the odometry's frame)") : ground_frame_);
-  status.add("tf at the stamp", tf_at_stamp_);
-  status.add("tf latest", tf_latest_);
-  status.add("odometry orientation", from_odometry_);
-  status.add("skipped: no orientation", no_orientation_);
-  status.add("last tf error", last_tf_error_);
-  if (no_orientation_ > reported_no_orientation_)
+  const OdometryEstimator::Counters& c = estimator_.counters();
+  const std::string& ground = estimator_.groundFrame();
+  status.add("ground frame", ground.empty() ? std::string("(the odometry's frame)") : ground);
+  status.add("tf at the stamp", c.tf_at_stamp);
+  status.add("tf latest", c.tf_latest);
+  status.add("odometry orientation", c.from_odometry);
+  status.add("skipped: no orientation", c.no_orientation);
+  status.add("last tf error", estimator_.lastTfError());
+  if (c.no_orientation > reported_no_orientation_)
     status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN,
                     "%lu messages skipped: no tf to the ground frame and no valid odometry orientation",
-                    static_cast<unsigned long>(no_orientation_ - reported_no_orientation_));
-  else if (from_odometry_ > 0 && tf_at_stamp_ + tf_latest_ == 0)
+                    static_cast<unsigned long>(c.no_orientation - reported_no_orientation_));
+  else if (c.from_odometry > 0 && c.tf_at_stamp + c.tf_latest == 0)
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "no tf: using the odometry's orientation");
   else
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "tf available");
-  reported_no_orientation_ = no_orientation_;
+  reported_no_orientation_ = c.no_orientation;
 }
 
 void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWrapper& status)

@@ -63,6 +63,8 @@ void toMessage(const ContactEstimateData& e, ContactEstimate& m)
   m.brush_moment = e.brush.M_z;
   m.sliding_fraction = e.brush.sliding_fraction;
   m.max_utilisation = e.brush.max_utilisation;
+  m.friction = e.friction;
+  m.brush_power = e.brush_power;
   m.brush_flags = e.brush.flags;
   m.brush_valid = e.brush_model == BrushChoice::Off || e.brush.valid();
 
@@ -79,6 +81,7 @@ void toMessage(const ContactEstimateData& e, ContactEstimate& m)
   r.regime = static_cast<uint8_t>(c.regime);
   r.flags = c.flags;
   r.valid = e.rolling_resistance_model == RollingResistanceChoice::Off || c.valid();
+  m.rolling_resistance_power = e.rolling_resistance_power;
 
   m.valid = e.valid();
   m.flags = e.flags;

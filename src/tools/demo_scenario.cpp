@@ -3,7 +3,8 @@
 // prints a summary per phase, writes a CSV, and shuts the launch down when done.
 //
 // Private parameters: rate [Hz], rolling_radius [m], noise_omega [rad/s], noise_velocity [m/s], seed,
-// frame_id, child_frame_id, publish_tf, output_csv (empty: none), subscriber_timeout [s], and segments: a
+// frame_id, child_frame_id, publish_tf, output_csv (empty: none), subscriber_timeout [s], odom_subscribers
+// (to wait for; 1), and segments: a
 // list of {name, duration, speed: [start, end], sliding: [start, end], lateral_sliding, yaw_rate, spin_rate}
 // (see config/demo_scenario.yaml); without it, Scenario::defaultSegments().
 
@@ -103,6 +104,8 @@ int main(int argc, char** argv)
   const bool publish_tf = pnh.param("publish_tf", true);
   const std::string csv_path = pnh.param<std::string>("output_csv", "");
   const double subscriber_timeout = pnh.param("subscriber_timeout", 10.0);
+  // the estimator, and a recorder when there is one (demo.launch record:=...)
+  const auto odom_subscribers = static_cast<std::uint32_t>(std::max(1, pnh.param("odom_subscribers", 1)));
   std::mt19937_64 rng(static_cast<unsigned long>(pnh.param("seed", 1)));
 
   std::vector<sce::ScenarioSample> samples;
@@ -140,7 +143,8 @@ int main(int argc, char** argv)
 
   // wait for the estimator, without busy-waiting forever
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(subscriber_timeout);
-  while (ros::ok() && (odom_pub.getNumSubscribers() == 0 || sub.getNumPublishers() == 0) && ros::WallTime::now() < deadline)
+  while (ros::ok() && (odom_pub.getNumSubscribers() < odom_subscribers || sub.getNumPublishers() == 0) &&
+         ros::WallTime::now() < deadline)
   {
     ros::spinOnce();
     ros::WallDuration(0.02).sleep();

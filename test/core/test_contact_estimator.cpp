@@ -4,6 +4,7 @@
 // STL
 #include <cmath>
 #include <limits>
+#include <random>
 
 // GTest
 #include <gtest/gtest.h>
@@ -84,6 +85,48 @@ TEST(ContactEstimator, EqualsTheCoreModelsInThePaperFrame)
   const CylinderState c = CylinderExact(s.cylinderParameters()).solve(v);
   EXPECT_DOUBLE_EQ(d->rolling_resistance_force, c.F_R * s.effective_length);
   EXPECT_DOUBLE_EQ(d->rolling_resistance.mu_roll, c.mu_roll);
+}
+
+TEST(ContactEstimator, DissipatedPower)
+{
+  // Full sliding without spin: |F_t| = mu F_z against V_s, so the patch takes mu F_z |V_s|.
+  {
+    EstimatorSettings s = settings();
+    ContactEstimator e(s);
+    const ContactEstimateData* d = e.update(rolling(0.0, 1.0, 0.3, 3.0, -4.0, 0.0));
+    ASSERT_TRUE(d);
+    const double mu_Fz = s.friction * s.verticalLoad();
+    EXPECT_NEAR(d->friction, s.friction, 0.0);
+    EXPECT_NEAR(d->brush_power, mu_Fz * 5.0, 1e-6 * mu_Fz * 5.0);
+    EXPECT_DOUBLE_EQ(d->rolling_resistance_power, d->rolling_resistance_force * 1.0);
+  }
+  // Pure spin at standstill, once every bristle slides: M_z = -sgn(omega_z) 8/15 mu F_z a for the parabolic
+  // pressure (the integral of mu q_z r over the disc), so the patch takes 8/15 mu F_z a |omega_z|.
+  {
+    EstimatorSettings s = settings(BrushChoice::Transient);
+    s.resolution = 32;
+    ContactEstimator e(s);
+    const double omega_z = 5.0, dt = 1e-3;
+    const ContactEstimateData* d = nullptr;
+    for (int i = 0; i <= 1000; ++i)  // 5 rad: far past the rotation at which the bristles saturate
+      d = e.update(rolling(i * dt, 0.0, 0.0, 0.0, 0.0, omega_z));
+    ASSERT_TRUE(d);
+    const double expected = 8.0 / 15.0 * s.friction * s.verticalLoad() * s.patch_radius * omega_z;
+    EXPECT_NEAR(d->brush_power, expected, 0.02 * expected);
+  }
+  // Steady states take energy, never give it: the second law at random slips and spins.
+  {
+    ContactEstimator e(settings());
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int i = 0; i < 200; ++i)
+    {
+      const double v = 0.1 + std::abs(u(rng)) * 3.0;
+      const ContactEstimateData* d = e.update(rolling(i, v, u(rng), 0.3 * u(rng), 0.3 * u(rng), 20.0 * u(rng)));
+      ASSERT_TRUE(d);
+      EXPECT_GE(d->brush_power, -1e-9 * d->friction * d->load * v) << i;
+    }
+  }
 }
 
 TEST(ContactEstimator, TurnRateFromTheHeading)

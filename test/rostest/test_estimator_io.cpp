@@ -27,6 +27,7 @@
 #include "sphere_contact_estimator/ContactEstimatorConfig.h"
 #include "sphere_contact_estimator/core/contact_estimator.h"
 #include "sphere_contact_estimator/ros/config_settings.h"
+#include "sphere_contact_estimator/ros/parameter_text.h"
 
 namespace sce = sphere_contact_estimator;
 
@@ -127,6 +128,48 @@ protected:
   std::unique_ptr<dynamic_reconfigure::Client<sce::ContactEstimatorConfig>> client_;
   sce::ContactEstimatorConfig config_;
 };
+
+TEST(ParameterText, NumbersReadAsTextAreRepaired)
+{
+  // what rosparam makes of "bristle_stiffness: 2.0e8" (YAML 1.1: no sign in the exponent, so text)
+  ros::NodeHandle pnh("/parameter_text_check");
+  pnh.setParam("bristle_stiffness", std::string("2.0e8"));
+  pnh.setParam("resolution", std::string("24"));
+  pnh.setParam("tilt", std::string("true"));
+  pnh.setParam("friction", std::string("slippery"));
+  pnh.setParam("contact_frame", std::string("1e3"));  // a string parameter stays text
+  pnh.setParam("surface_damping", 1e5);               // a number stays as it is
+  bool all_repaired = true;
+  const std::vector<std::string> lines = sce::repairTextParameters(pnh, all_repaired);
+  EXPECT_EQ(lines.size(), 4u);
+  EXPECT_FALSE(all_repaired);  // "slippery" is no number
+  double k = 0.0, damping = 0.0;
+  int resolution = 0;
+  bool tilt = false;
+  std::string frame;
+  EXPECT_TRUE(pnh.getParam("bristle_stiffness", k));
+  EXPECT_EQ(k, 2e8);
+  EXPECT_TRUE(pnh.getParam("resolution", resolution));
+  EXPECT_EQ(resolution, 24);
+  EXPECT_TRUE(pnh.getParam("tilt", tilt));
+  EXPECT_TRUE(tilt);
+  EXPECT_FALSE(pnh.hasParam("friction"));  // deleted: the default applies
+  EXPECT_TRUE(pnh.getParam("contact_frame", frame));
+  EXPECT_EQ(frame, "1e3");
+  EXPECT_TRUE(pnh.getParam("surface_damping", damping));
+  EXPECT_EQ(damping, 1e5);
+  pnh.deleteParam("");
+}
+
+TEST_F(EstimatorIo, TheParameterFileIsInForce)
+{
+  // every value of config/contact_estimator.yaml reached the estimator (none dropped as mistyped)
+  EXPECT_EQ(config_.bristle_stiffness, 2e8);
+  EXPECT_EQ(config_.surface_stiffness, 1e8);
+  EXPECT_EQ(config_.surface_damping, 1e5);
+  EXPECT_EQ(config_.surface_density, 10.0);
+  EXPECT_EQ(config_.standstill_speed, 0.05);
+}
 
 TEST_F(EstimatorIo, OneOutputPerInputWithItsStamp)
 {

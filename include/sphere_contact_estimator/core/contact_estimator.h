@@ -58,6 +58,12 @@ struct ContactEstimateData
   BrushChoice brush_model_used = BrushChoice::Off;  ///< the model that ran (differs under auto)
   int brush_resolution = 0;                         ///< its resolution (0: linear or off)
   BrushForces brush;          ///< F_x, F_y [N], M_z [N m] on the sphere, ROS contact frame
+  double friction = 0.0;      ///< mu in force (0 with the brush model off)
+  /// Power the ground's stresses take from the sphere's contact material, -(F_t . V_s + M_z omega_z) [W]:
+  /// the material at x moves at V_s + omega_z e_z x x relative to the ground. In a steady state it is what
+  /// sliding and the released bristles dissipate; in a transient, part of it is stored in the bristles.
+  double brush_power = 0.0;
+  double rolling_resistance_power = 0.0;   ///< F_R L V_r [W], dissipated by the viscous surface (eq. 17)
 
   RollingResistanceChoice rolling_resistance_model = RollingResistanceChoice::Off;
   CylinderState rolling_resistance;  ///< per unit length, as CylinderModel::solve returns it

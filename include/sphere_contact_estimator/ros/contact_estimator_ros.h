@@ -27,6 +27,7 @@
 #include "sphere_contact_estimator/ContactEstimate.h"
 #include "sphere_contact_estimator/ContactEstimatorConfig.h"
 #include "sphere_contact_estimator/core/contact_estimator.h"
+#include "sphere_contact_estimator/ros/odometry_estimator.h"
 
 namespace sphere_contact_estimator
 {
@@ -45,11 +46,7 @@ public:
 private:
   void odometryCallback(const nav_msgs::Odometry::ConstPtr& msg);
   void reconfigureCallback(ContactEstimatorConfig& config, uint32_t level);
-  /// Rotation from the odometry's child frame into the ground frame, and the sphere centre there: tf at
-  /// the stamp, else tf's latest, else the odometry's own pose. False when there is neither (never waits).
-  bool groundPose(const nav_msgs::Odometry& msg, const std::string& ground, Eigen::Quaterniond& rotation,
-                  Eigen::Vector3d& centre, bool& have_centre);
-  void publishMarkers(const ContactEstimateData& estimate);
+  void publishMarkers(const ContactEstimateData& estimate, const std_msgs::Header& header);
   void diagnoseInput(diagnostic_updater::DiagnosticStatusWrapper& status);
   void diagnoseTf(diagnostic_updater::DiagnosticStatusWrapper& status);
   void diagnoseModels(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -66,24 +63,16 @@ private:
   diagnostic_updater::Updater updater_;
   ros::WallTimer diagnostics_timer_;  // wall time: diagnostics (stale input) go on when sim time stops
 
-  // **** parameters and state, shared by the odometry and reconfigure callbacks: guarded by mutex_
+  // **** parameters and state, shared by the odometry, reconfigure and diagnostics callbacks (which run
+  // concurrently in a multi-threaded nodelet manager): guarded by mutex_
   std::mutex mutex_;
-  ContactEstimator estimator_;
+  OdometryEstimator estimator_;    // the same class bag_analyze runs
   ContactEstimatorConfig config_;  // the accepted configuration
-  std::string ground_frame_, contact_frame_;
-  bool publish_tf_ = true;
   double stale_timeout_ = 1.0;
-  ros::Time last_broadcast_;       // no TF_REPEATED_DATA: one broadcast per stamp
+  visualization_msgs::MarkerArray markers_;  // reused so the hot path does not allocate it
 
-  // **** messages, reused so the hot path does not allocate them
-  ContactEstimate estimate_msg_;
-  geometry_msgs::WrenchStamped brush_wrench_msg_, rr_wrench_msg_;
-  geometry_msgs::TransformStamped contact_tf_;
-  visualization_msgs::MarkerArray markers_;
-
-  // **** diagnostics counters (guarded by mutex_)
-  std::uint64_t received_ = 0, published_ = 0, rejected_input_ = 0, no_orientation_ = 0;
-  std::uint64_t tf_at_stamp_ = 0, tf_latest_ = 0, from_odometry_ = 0, time_jumps_ = 0;
+  // **** diagnostics counters (guarded by mutex_; the estimator keeps its own)
+  std::uint64_t received_ = 0, published_ = 0;
   std::uint64_t window_received_ = 0;
   std::uint64_t reported_rejected_ = 0, reported_time_jumps_ = 0, reported_no_orientation_ = 0;  // at the last report
   ros::WallTime window_start_;
@@ -93,7 +82,6 @@ private:
   std::uint32_t last_brush_flags_ = 0, last_rr_flags_ = 0, last_flags_ = 0;
   std::uint8_t last_regime_ = 0;
   bool have_estimate_ = false;
-  std::string last_tf_error_;
 };
 
 }  // namespace sphere_contact_estimator

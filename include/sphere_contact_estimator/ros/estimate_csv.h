@@ -1,0 +1,26 @@
+#pragma once
+
+// STL
+#include <ostream>
+
+// Package
+#include "sphere_contact_estimator/ContactEstimate.h"
+
+namespace sphere_contact_estimator
+{
+/// One CSV row per ContactEstimate (bag_analyze --csv; scripts/plot_analysis.py reads it). Every number of
+/// the message, flattened, with t = stamp - the first stamp.
+class EstimateCsv
+{
+public:
+  /// Writes the header line.
+  explicit EstimateCsv(std::ostream& out);
+  void write(const ContactEstimate& estimate);
+
+private:
+  std::ostream& out_;
+  bool have_start_ = false;
+  double start_ = 0.0;
+};
+
+}  // namespace sphere_contact_estimator

@@ -1,0 +1,215 @@
+#include "sphere_contact_estimator/ros/bag_analyzer.h"
+
+// STL
+#include <algorithm>
+#include <fstream>
+#include <set>
+#include <stdexcept>
+
+// ROS
+#include <nav_msgs/Odometry.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <tf2/buffer_core.h>
+#include <tf2_msgs/TFMessage.h>
+
+// Package
+#include "sphere_contact_estimator/ros/estimate_csv.h"
+#include "sphere_contact_estimator/ros/odometry_estimator.h"
+
+namespace sphere_contact_estimator
+{
+namespace
+{
+const std::string kEstimateTopic = "/contact_estimate";
+const std::string kBrushTopic = "/brush_wrench";
+const std::string kRollingResistanceTopic = "/rolling_resistance_wrench";
+
+std::string odometryTopic(rosbag::View& all, const std::string& requested)
+{
+  std::set<std::string> odometry, topics;
+  for (const rosbag::ConnectionInfo* c : all.getConnections())
+  {
+    topics.insert(c->topic);
+    if (c->datatype == "nav_msgs/Odometry")
+      odometry.insert(c->topic);
+  }
+  const auto list = [](const std::set<std::string>& s) {
+    std::string text;
+    for (const auto& t : s)
+      text += (text.empty() ? "" : ", ") + t;
+    return text.empty() ? std::string("none") : text;
+  };
+  if (!requested.empty())
+  {
+    if (!odometry.count(requested))
+      throw std::runtime_error("no nav_msgs/Odometry topic " + requested + " in the bag; odometry topics: " +
+                               list(odometry));
+    return requested;
+  }
+  if (odometry.size() != 1)
+    throw std::runtime_error(odometry.empty() ? "no nav_msgs/Odometry topic in the bag; topics: " + list(topics) :
+                                                "several odometry topics (" + list(odometry) +
+                                                    "): choose one with --odom-topic");
+  return *odometry.begin();
+}
+
+void addTransforms(tf2::BufferCore& buffer, const tf2_msgs::TFMessage& msg, bool is_static)
+{
+  for (const auto& t : msg.transforms)
+  {
+    try
+    {
+      buffer.setTransform(t, "bag", is_static);
+    }
+    catch (const std::exception&)  // a malformed transform in a bag is not ours to stop on
+    {
+    }
+  }
+}
+}  // namespace
+
+BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<void(double)>& progress)
+{
+  BagAnalysisResult result;
+  OdometryEstimator estimator(o.config);  // throws std::invalid_argument for an invalid configuration
+
+  rosbag::Bag in;
+  try
+  {
+    in.open(o.input, rosbag::bagmode::Read);
+  }
+  catch (const rosbag::BagException& e)
+  {
+    throw std::runtime_error("cannot read bag " + o.input + ": " + e.what());
+  }
+  rosbag::View all(in);
+  if (all.size() == 0)
+    throw std::runtime_error("bag " + o.input + " is empty");
+  result.odom_topic = odometryTopic(all, o.odom_topic);
+  const ros::Time bag_begin = all.getBeginTime(), bag_end = all.getEndTime();
+  const ros::Time begin = std::min(bag_end, bag_begin + ros::Duration(std::max(0.0, o.start)));
+  const ros::Time end = std::isfinite(o.end) ? std::min(bag_end, bag_begin + ros::Duration(std::max(0.0, o.end))) : bag_end;
+  if (end < begin)
+    throw std::runtime_error("the time range is empty: --start must come before --end");
+  result.bag_seconds = (end - begin).toSec();
+
+  // The static transforms hold for the whole bag, wherever the range starts.
+  tf2::BufferCore tf(ros::Duration(60.0));
+  for (const rosbag::MessageInstance& m : rosbag::View(in, rosbag::TopicQuery("/tf_static")))
+    if (const auto msg = m.instantiate<tf2_msgs::TFMessage>())
+      addTransforms(tf, *msg, true);
+
+  rosbag::Bag out;
+  if (!o.output.empty())
+  {
+    try
+    {
+      out.open(o.output, rosbag::bagmode::Write);
+    }
+    catch (const rosbag::BagException& e)
+    {
+      throw std::runtime_error("cannot write bag " + o.output + ": " + e.what());
+    }
+  }
+  std::ofstream csv_file;
+  std::unique_ptr<EstimateCsv> csv;
+  if (!o.csv.empty())
+  {
+    csv_file.open(o.csv);
+    if (!csv_file)
+      throw std::runtime_error("cannot write " + o.csv);
+    csv = std::make_unique<EstimateCsv>(csv_file);
+  }
+
+  const std::set<std::string> selected(o.topics.begin(), o.topics.end());
+  const std::set<std::string> ours = { kEstimateTopic, kBrushTopic, kRollingResistanceTopic };
+  std::set<std::string> replaced;
+  const auto copy = [&](const rosbag::MessageInstance& m) {
+    if (!out.isOpen() || !o.copy_input || (!selected.empty() && !selected.count(m.getTopic())))
+      return;
+    if (ours.count(m.getTopic()))
+    {
+      replaced.insert(m.getTopic());
+      return;
+    }
+    out.write(m.getTopic(), m.getTime(), m, m.getConnectionHeader());
+    ++result.copied;
+  };
+
+  rosbag::View view(in, begin, end);
+  const double span = std::max((end - begin).toSec(), 1e-9);
+  std::uint64_t seen = 0;
+  tf2_msgs::TFMessage contact_tf;
+  contact_tf.transforms.resize(1);
+  SkipReason reason;
+  for (const rosbag::MessageInstance& m : view)
+  {
+    if (progress && ++seen % 2048 == 0)
+      progress((m.getTime() - begin).toSec() / span);
+    const std::string& topic = m.getTopic();
+    if (topic == "/tf")
+    {
+      const auto msg = m.instantiate<tf2_msgs::TFMessage>();
+      if (!msg)
+        continue;
+      addTransforms(tf, *msg, false);
+      // a bag recorded beside the live node has its contact frame already: ours replaces it
+      const bool has_contact = std::any_of(msg->transforms.begin(), msg->transforms.end(), [&](const auto& t) {
+        return t.child_frame_id == estimator.contactFrame();
+      });
+      if (!has_contact)
+        copy(m);
+      else if (out.isOpen() && o.copy_input && (selected.empty() || selected.count(topic)))
+      {
+        tf2_msgs::TFMessage rest;
+        for (const auto& t : msg->transforms)
+          if (t.child_frame_id != estimator.contactFrame())
+            rest.transforms.push_back(t);
+        if (!rest.transforms.empty())
+          out.write(topic, m.getTime(), rest);
+        ++result.copied;
+        replaced.insert("/tf (" + estimator.contactFrame() + ")");
+      }
+      continue;
+    }
+    if (topic != result.odom_topic)
+    {
+      copy(m);
+      continue;
+    }
+    const auto odom = m.instantiate<nav_msgs::Odometry>();
+    if (!odom)
+      continue;
+    copy(m);
+    ++result.odometry;
+    const EstimateOutputs* e = estimator.process(*odom, tf, reason);
+    if (!e)
+      continue;
+    ++result.estimates;
+    result.summary.add(*e->data);
+    if (out.isOpen())
+    {
+      out.write(kEstimateTopic, m.getTime(), e->estimate);
+      out.write(kBrushTopic, m.getTime(), e->brush_wrench);
+      out.write(kRollingResistanceTopic, m.getTime(), e->rolling_resistance_wrench);
+      if (e->has_transform)
+      {
+        contact_tf.transforms[0] = e->contact_transform;
+        out.write("/tf", m.getTime(), contact_tf);
+      }
+    }
+    if (csv)
+      csv->write(e->estimate);
+  }
+  if (progress)
+    progress(1.0);
+  result.no_orientation = estimator.counters().no_orientation;
+  result.rejected = estimator.counters().rejected;
+  result.replaced_topics.assign(replaced.begin(), replaced.end());
+  if (csv_file.is_open() && !csv_file.flush())
+    throw std::runtime_error("writing " + o.csv + " failed");
+  return result;
+}
+
+}  // namespace sphere_contact_estimator
