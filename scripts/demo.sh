@@ -2,7 +2,8 @@
 # README command 1: install, build, and run the main job: the contact estimator node on the bundled
 # spherical-robot manoeuvre (launch/demo.launch: accelerate, cruise, turn, brake with slip, spin in place,
 # with sensor noise), headless; it prints a summary per phase and writes every estimate to a CSV. Then the
-# models' characteristic figures: Figs. 2-3 of Poeschel et al. and Fig. 4 of Romano et al.
+# models' characteristic figures: Figs. 2-3 of Poeschel et al. and Fig. 4 of Romano et al., and the
+# bundled recorded run (data/demo.bag) through the offline analyser and its figures.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
@@ -26,3 +27,8 @@ log "rolling-resistance sweep and plots -> $OUT"
   --config "$REPO/config/rubber_cylinder_paper.yaml"
 log "brush characteristics of a spherical wheel (Fig. 4 of Romano et al.) -> $OUT"
 /usr/bin/python3 "$REPO/scripts/plot_brush_characteristics.py" --output "$OUT"
+log "the recorded demo run (data/demo.bag) through bag_analyze and plot_analysis.py -> $OUT/demo_bag"
+mkdir -p "$OUT/demo_bag"
+"$WS/devel/lib/$PKG/bag_analyze" --input "$REPO/data/demo.bag" --output "$OUT/demo_bag/demo_analysis.bag" \
+  --csv "$OUT/demo_bag/demo.csv" --progress never
+/usr/bin/python3 "$REPO/scripts/plot_analysis.py" "$OUT/demo_bag/demo.csv" --output "$OUT/demo_bag"

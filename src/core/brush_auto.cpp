@@ -61,6 +61,18 @@ BrushAuto::BrushAuto(const BrushParameters& parameters) : BrushModel(parameters)
   transient_ = std::make_unique<BrushTransient>(withResolution(p_, transient_resolution_));
 }
 
+void BrushAuto::rotateFrame(double alpha)
+{
+  transient_->rotateFrame(alpha);
+  // a force, physical, in the turned axes (x' = R(-alpha) x)
+  const double c = std::cos(alpha), s = std::sin(alpha);
+  previous_force_ = Eigen::Vector2d(c * previous_force_.x() + s * previous_force_.y(),
+                                    -s * previous_force_.x() + c * previous_force_.y());
+  const Eigen::Vector2d offset(c * offset_.F_x + s * offset_.F_y, -s * offset_.F_x + c * offset_.F_y);
+  offset_.F_x = offset.x();
+  offset_.F_y = offset.y();
+}
+
 void BrushAuto::reset()
 {
   transient_->reset();

@@ -182,8 +182,8 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
     {
       // re-initialise: turn the bristle state with the frame (a turn of delta about z up is -delta about
       // the paper's z down), no rate from the jump
-      if (auto* transient = dynamic_cast<BrushTransient*>(brush_.get()))
-        transient->rotateFrame(-delta);
+      if (brush_)
+        brush_->rotateFrame(-delta);
       if (!first)
         o.flags |= estimate_flags::kHeadingReset;
       turn_rate_ = 0.0;

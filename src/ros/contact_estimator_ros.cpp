@@ -52,6 +52,16 @@ ContactEstimatorRos::ContactEstimatorRos(ros::NodeHandle nh, ros::NodeHandle pnh
                                                      << estimate_pub_.getTopic());
 }
 
+ContactEstimatorRos::~ContactEstimatorRos()
+{
+  // Members go in reverse order of declaration: the state would go before the subscriber, timer and server
+  // whose callbacks use it, while a worker thread may be inside one (ThreadSanitizer found it). roscpp's
+  // shutdown and stop wait for a running callback to return.
+  odom_sub_.shutdown();
+  diagnostics_timer_.stop();
+  reconfigure_server_.reset();
+}
+
 void ContactEstimatorRos::reconfigureCallback(ContactEstimatorConfig& config, uint32_t /*level*/)
 {
   std::lock_guard<std::mutex> lock(mutex_);

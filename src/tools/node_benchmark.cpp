@@ -1,7 +1,7 @@
 // node_benchmark: the contact estimator node over real roscpp on loopback. For each brush model it raises
 // the odometry rate until the node falls behind, and reports the highest rate sustained with no backlog and
 // the p50/p99 latency from odometry stamp to the estimate's arrival. Then the offline replay throughput of a
-// bag through the same estimator class (messages per second).
+// bag by bag_analyze's own path, analyzeBag (messages per second).
 //
 // Run by scripts/benchmark.sh beside `contact_estimator_node` (pinned to one core); prints JSON.
 // Private parameters: node (default /contact_estimator), duration per rate [s], rates (list), models (list).
@@ -29,6 +29,7 @@
 // Package
 #include "sphere_contact_estimator/ContactEstimate.h"
 #include "sphere_contact_estimator/ContactEstimatorConfig.h"
+#include "sphere_contact_estimator/ros/bag_analyzer.h"
 #include "sphere_contact_estimator/core/contact_estimator.h"
 #include "sphere_contact_estimator/core/scenario.h"
 #include "sphere_contact_estimator/ros/config_settings.h"
@@ -184,27 +185,20 @@ int main(int argc, char** argv)
   std::printf("  \"replay\": [\n");
   for (std::size_t mi = 0; mi < models.size(); ++mi)
   {
-    config.brush_model = models[mi];
-    sce::ContactEstimator estimator(sce::settingsFromConfig(config));
-    rosbag::Bag bag(bag_path, rosbag::bagmode::Read);
-    std::size_t count = 0;
+    // bag_analyze's own path: the node's estimator class, the output bag and the CSV
+    sce::BagAnalysisOptions replay;
+    replay.input = bag_path;
+    replay.output = bag_path + ".out.bag";
+    replay.csv = bag_path + ".csv";
+    replay.config = config;
+    replay.config.brush_model = models[mi];
     const auto start = std::chrono::steady_clock::now();
-    for (const rosbag::MessageInstance& m : rosbag::View(bag))
-    {
-      const auto o = m.instantiate<nav_msgs::Odometry>();
-      if (!o)
-        continue;
-      const auto& q = o->pose.pose.orientation;
-      const Eigen::Quaterniond r(q.w, q.x, q.y, q.z);
-      sce::EstimatorInput in;
-      in.stamp = o->header.stamp.toSec();
-      in.omega = r * Eigen::Vector3d(o->twist.twist.angular.x, o->twist.twist.angular.y, o->twist.twist.angular.z);
-      in.v_contact = r * Eigen::Vector3d(o->twist.twist.linear.x, o->twist.twist.linear.y, o->twist.twist.linear.z);
-      count += estimator.update(in) != nullptr;
-    }
+    const sce::BagAnalysisResult r = sce::analyzeBag(replay);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("%s    {\"brush_model\": %d, \"messages\": %zu, \"messages_per_second\": %.0f}", mi ? ",\n" : "", models[mi],
-                count, count / seconds);
+    std::printf("%s    {\"brush_model\": %d, \"messages\": %llu, \"messages_per_second\": %.0f}", mi ? ",\n" : "",
+                models[mi], static_cast<unsigned long long>(r.estimates), r.estimates / seconds);
+    std::remove(replay.output.c_str());
+    std::remove(replay.csv.c_str());
   }
   std::printf("\n  ]\n}\n");
   std::remove(bag_path.c_str());

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 // Package
+#include "sphere_contact_estimator/core/brush_auto.h"
 #include "sphere_contact_estimator/core/brush_steady.h"
 #include "sphere_contact_estimator/core/contact_estimator.h"
 #include "sphere_contact_estimator/core/cylinder_exact.h"
@@ -127,6 +128,35 @@ TEST(ContactEstimator, DissipatedPower)
       EXPECT_GE(d->brush_power, -1e-9 * d->friction * d->load * v) << i;
     }
   }
+}
+
+TEST(ContactEstimator, AutoTurnsItsTransientStateWithTheFrame)
+{
+  // Spinning at standstill (auto runs its transient model), then rolling off at a new heading: the frame is
+  // re-initialised and the bristle state must turn with it, exactly as in the transient model itself.
+  EstimatorSettings automatic = settings(BrushChoice::Auto);
+  automatic.accuracy_target = 0.05;
+  const BrushAuto probe(automatic.brushParameters());
+  EstimatorSettings transient = settings(BrushChoice::Transient);
+  transient.resolution = probe.transientResolution();
+  ContactEstimator a(automatic), t(transient);
+  const double dt = 1e-3;
+  int i = 0;
+  for (; i < 100; ++i)
+  {
+    a.update(rolling(i * dt, 0.0, 0.0, 0.0, 0.0, 2.0));
+    t.update(rolling(i * dt, 0.0, 0.0, 0.0, 0.0, 2.0));
+  }
+  const ContactEstimateData* da = a.update(rolling(i * dt, 0.5, 2.0, 0.0, 0.01, 2.0));
+  const ContactEstimateData* dt_ = t.update(rolling(i * dt, 0.5, 2.0, 0.0, 0.01, 2.0));
+  ASSERT_TRUE(da && dt_);
+  ASSERT_TRUE(da->flags & estimate_flags::kHeadingReset);
+  ASSERT_EQ(da->brush_model_used, BrushChoice::Transient);
+  const double scale = transient.friction * transient.verticalLoad();
+  EXPECT_GT(std::hypot(dt_->brush.F_x, dt_->brush.F_y), 0.05 * scale);  // a state worth turning
+  EXPECT_NEAR(da->brush.F_x, dt_->brush.F_x, 1e-9 * scale);
+  EXPECT_NEAR(da->brush.F_y, dt_->brush.F_y, 1e-9 * scale);
+  EXPECT_NEAR(da->brush.M_z, dt_->brush.M_z, 1e-9 * scale * transient.patch_radius);
 }
 
 TEST(ContactEstimator, TurnRateFromTheHeading)

@@ -38,6 +38,9 @@ public:
 
   BrushForces update(const ContactKinematics& kinematics, double dt) override;
   void reset() override;
+  /// Turns its transient state and the force history with the frame (entering the transient later from a
+  /// steady state needs no turning: that state is built in the new frame).
+  void rotateFrame(double alpha) override;
   BrushModelKind kind() const override { return BrushModelKind::Auto; }
 
   /// The model that produced the last update, and its resolution (0 for linear).

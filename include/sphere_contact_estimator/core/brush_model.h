@@ -37,6 +37,10 @@ public:
   virtual BrushForces update(const ContactKinematics& kinematics, double dt) = 0;
   /// Forgets all history (transient state); a no-op for the steady models.
   virtual void reset() {}
+  /// The patch frame turned by alpha [rad] about its z axis (paper frame, z down), for heading changes the
+  /// turn coupling does not carry (the rolling direction re-initialised after standstill or a reversal):
+  /// state that lives in the frame is re-expressed in the new axes. Stateless models have nothing to turn.
+  virtual void rotateFrame(double /*alpha*/) {}
   virtual BrushModelKind kind() const = 0;
 
   const BrushParameters& parameters() const { return p_; }

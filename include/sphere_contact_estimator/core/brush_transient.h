@@ -46,7 +46,7 @@ public:
   /// The patch frame turned by alpha [rad] about its z axis (paper frame, z down): bristle positions and
   /// deflections, which are physical, are re-expressed in the new axes. For heading changes that the turn
   /// coupling does not carry (re-initialising the rolling direction after standstill or a reversal).
-  void rotateFrame(double alpha);
+  void rotateFrame(double alpha) override;
 
   /// New parameters. The bristle state is kept unless the lattice changes (patch radius or resolution):
   /// deflections stay meaningful under a new stiffness, load, friction, pressure or formulation, and the

@@ -42,6 +42,10 @@ class ContactEstimatorRos
 public:
   /// @param nh topics; @param pnh private parameters and the reconfigure server
   ContactEstimatorRos(ros::NodeHandle nh, ros::NodeHandle pnh);
+  /// Stops the callbacks first, waiting for any that runs (a nodelet unloaded from a multi-threaded manager).
+  ~ContactEstimatorRos();
+  ContactEstimatorRos(const ContactEstimatorRos&) = delete;
+  ContactEstimatorRos& operator=(const ContactEstimatorRos&) = delete;
 
 private:
   void odometryCallback(const nav_msgs::Odometry::ConstPtr& msg);

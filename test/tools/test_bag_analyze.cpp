@@ -1,0 +1,261 @@
+// bag_analyze and its library on synthetic bags: transforms from the bag's /tf, the time range, topics
+// copied and replaced, the run summary against closed forms, errors for people, and the plot script on
+// the CSV it writes.
+
+// STL
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+// GTest
+#include <gtest/gtest.h>
+
+// ROS
+#include <nav_msgs/Odometry.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <std_msgs/String.h>
+#include <tf2_msgs/TFMessage.h>
+
+// Package
+#include "sphere_contact_estimator/ContactEstimate.h"
+#include "sphere_contact_estimator/ros/bag_analyzer.h"
+#include "sphere_contact_estimator/ros/config_file.h"
+
+namespace sce = sphere_contact_estimator;
+
+namespace
+{
+const std::string kDir = "/tmp/sphere_contact_estimator_test_bag_analyze";
+
+/// Rolling along x at v for `seconds` at 100 Hz, the centre sliding back by `slide`; the sphere's frame is
+/// yawed by `yaw` in the ground frame, given either by /tf (and no pose orientation) or by the pose.
+std::string writeBag(const std::string& name, double v, double slide, double seconds, bool tf, double yaw = 0.6)
+{
+  const std::string path = kDir + "/" + name;
+  rosbag::Bag bag(path, rosbag::bagmode::Write);
+  const double R = 0.1;
+  for (int i = 0; i <= static_cast<int>(std::lround(seconds * 100.0)); ++i)
+  {
+    const ros::Time t(100.0 + 0.01 * i);
+    if (tf)
+    {
+      tf2_msgs::TFMessage m;
+      m.transforms.resize(1);
+      m.transforms[0].header.stamp = t;
+      m.transforms[0].header.frame_id = "odom";
+      m.transforms[0].child_frame_id = "base_link";
+      m.transforms[0].transform.rotation.z = std::sin(0.5 * yaw);
+      m.transforms[0].transform.rotation.w = std::cos(0.5 * yaw);
+      bag.write("/tf", t - ros::Duration(1e-6), m);  // received just before the odometry, as recorders see it
+    }
+    nav_msgs::Odometry o;
+    o.header.stamp = t;
+    o.header.frame_id = "odom";
+    o.child_frame_id = "base_link";
+    if (!tf)
+    {
+      o.pose.pose.orientation.z = std::sin(0.5 * yaw);
+      o.pose.pose.orientation.w = std::cos(0.5 * yaw);
+    }  // else all zero: no valid orientation, only tf gives one
+    o.twist.twist.angular.y = v / R;  // body frame: rolling along its x
+    o.twist.twist.linear.x = v - slide;
+    bag.write("/wheel/odometry", t, o);
+    if (i % 50 == 0)
+    {
+      std_msgs::String s;
+      s.data = "unrelated";
+      bag.write("/chatter", t, s);
+    }
+  }
+  return path;
+}
+
+sce::BagAnalysisOptions options(const std::string& input)
+{
+  sce::BagAnalysisOptions o;
+  o.input = input;
+  o.config.brush_model = 2;                // steady: closed forms below
+  o.config.rolling_resistance_model = 1;   // exact
+  o.config.robot_mass = 5.0;
+  return o;
+}
+
+std::string readFile(const std::string& path)
+{
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+int run(const std::string& command, std::string& output)
+{
+  const std::string log = kDir + "/command.log";
+  const int status = std::system((command + " > " + log + " 2>&1").c_str());
+  output = readFile(log);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+class BagAnalyze : public ::testing::Test
+{
+protected:
+  static void SetUpTestSuite()
+  {
+    ros::Time::init();
+    std::system(("mkdir -p " + kDir).c_str());
+  }
+};
+
+TEST_F(BagAnalyze, OrientationFromTheBagsTf)
+{
+  // the pose has no orientation: without the bag's /tf every message would be skipped
+  sce::BagAnalysisOptions o = options(writeBag("tf.bag", 1.0, 0.0, 1.0, true));
+  o.output = kDir + "/tf_out.bag";
+  const sce::BagAnalysisResult r = sce::analyzeBag(o);
+  EXPECT_EQ(r.odom_topic, "/wheel/odometry");
+  EXPECT_EQ(r.odometry, 101u);
+  EXPECT_EQ(r.estimates, 101u);
+  EXPECT_EQ(r.no_orientation, 0u);
+  rosbag::Bag out(o.output);
+  std::size_t estimates = 0, tf = 0, chatter = 0, odometry = 0;
+  for (const rosbag::MessageInstance& m : rosbag::View(out))
+  {
+    if (m.getTopic() == "/contact_estimate")
+    {
+      const auto e = m.instantiate<sce::ContactEstimate>();
+      ++estimates;
+      EXPECT_FALSE(e->flags & sce::ContactEstimate::FLAG_ORIENTATION_FROM_ODOMETRY);
+      EXPECT_NEAR(e->heading, 0.6, 1e-9);  // the rolling direction, yawed by tf
+      EXPECT_NEAR(e->rolling_speed, 1.0, 1e-12);
+    }
+    tf += m.getTopic() == "/tf";
+    chatter += m.getTopic() == "/chatter";
+    odometry += m.getTopic() == "/wheel/odometry";
+  }
+  EXPECT_EQ(estimates, 101u);
+  EXPECT_EQ(tf, 101u + 101u);  // the input's and the contact frame's
+  EXPECT_EQ(chatter, 3u);
+  EXPECT_EQ(odometry, 101u);
+}
+
+TEST_F(BagAnalyze, TimeRangeAndTopics)
+{
+  sce::BagAnalysisOptions o = options(writeBag("range.bag", 1.0, 0.0, 2.0, false));
+  o.start = 0.5;
+  o.end = 1.5;
+  o.output = kDir + "/range_out.bag";
+  o.topics = { "/wheel/odometry" };
+  const sce::BagAnalysisResult r = sce::analyzeBag(o);
+  EXPECT_EQ(r.estimates, 101u);  // 0.50 s ... 1.50 s at 100 Hz
+  EXPECT_NEAR(r.bag_seconds, 1.0, 1e-9);
+  EXPECT_EQ(r.copied, 101u);     // the odometry only, no chatter
+  rosbag::Bag out(o.output);
+  EXPECT_EQ(rosbag::View(out, rosbag::TopicQuery("/chatter")).size(), 0u);
+  EXPECT_EQ(rosbag::View(out, rosbag::TopicQuery("/contact_estimate")).size(), 101u);
+
+  // estimates in the input (a bag recorded beside the live node) are replaced, not doubled
+  sce::BagAnalysisOptions again = options(o.output);
+  again.output = kDir + "/range_again.bag";
+  const sce::BagAnalysisResult r2 = sce::analyzeBag(again);
+  ASSERT_FALSE(r2.replaced_topics.empty());
+  rosbag::Bag out2(again.output);
+  EXPECT_EQ(rosbag::View(out2, rosbag::TopicQuery("/contact_estimate")).size(), 101u);
+}
+
+TEST_F(BagAnalyze, SummaryAgainstClosedForms)
+{
+  // 2 s at 1 m/s with the centre sliding back at 2 m/s (full sliding): distance 2 m; the patch takes
+  // mu F_z |V_s| (|F_t| = mu F_z against V_s), the surface F_R L V_r
+  sce::BagAnalysisOptions o = options(writeBag("sliding.bag", 1.0, 2.0, 2.0, false));
+  const sce::BagAnalysisResult r = sce::analyzeBag(o);
+  const sce::RunSummary& s = r.summary;
+  const double mu_Fz = o.config.friction * o.config.robot_mass * o.config.gravity;
+  EXPECT_NEAR(s.duration(), 2.0, 1e-9);
+  EXPECT_NEAR(s.distance(), 2.0, 1e-9);
+  EXPECT_NEAR(s.brushEnergy(), mu_Fz * 2.0 * 2.0, 1e-6 * mu_Fz * 4.0);
+  EXPECT_NEAR(s.peakUtilisation(), 1.0, 1e-9);
+  EXPECT_NEAR(s.slidingShareMostly(), 1.0, 1e-12);
+  EXPECT_GT(s.rollingResistanceEnergy(), 0.0);
+  EXPECT_NEAR(s.rollingResistanceEnergy(), s.peakRollingResistance() * 1.0 * 2.0, 1e-9 * s.rollingResistanceEnergy());
+  EXPECT_EQ(s.brushModelsUsed()[2], r.estimates);
+
+  // pure rolling: no sliding, so (almost) nothing for the patch to take
+  const sce::BagAnalysisResult rolling = sce::analyzeBag(options(writeBag("rolling.bag", 1.0, 0.0, 1.0, false)));
+  EXPECT_NEAR(rolling.summary.brushEnergy(), 0.0, 1e-9);
+  EXPECT_NEAR(rolling.summary.slidingShareAny(), 0.0, 1e-12);
+}
+
+TEST_F(BagAnalyze, ParameterFiles)
+{
+  sce::ContactEstimatorConfig c = sce::ContactEstimatorConfig::__getDefault__();
+  std::ofstream(kDir + "/good.yaml") << "friction: 0.5\nbristle_stiffness: 2.0e8\ntilt: true\nresolution: 24\n"
+                                        "ground_frame: map\nqueue_size: 100\n";
+  sce::applyParameterFile(c, kDir + "/good.yaml");
+  EXPECT_EQ(c.friction, 0.5);
+  EXPECT_EQ(c.bristle_stiffness, 2e8);  // YAML 1.1 text, read as the number it is
+  EXPECT_TRUE(c.tilt);
+  EXPECT_EQ(c.resolution, 24);
+  EXPECT_EQ(c.ground_frame, "map");
+  const auto rejects = [&](const std::string& text, const std::string& says) {
+    std::ofstream(kDir + "/bad.yaml") << text;
+    sce::ContactEstimatorConfig before = c;
+    try
+    {
+      sce::applyParameterFile(c, kDir + "/bad.yaml");
+      ADD_FAILURE() << text << " accepted";
+    }
+    catch (const std::invalid_argument& e)
+    {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(c.friction, before.friction) << "a rejected file changed the configuration";
+  };
+  rejects("friction: 0.3\nfrictoin: 0.4\n", "unknown parameter 'frictoin'");
+  rejects("friction: lots\n", "not a number");
+  rejects("resolution: 2.5\n", "not an integer");
+  rejects("friction: 1000\n", "outside");
+  rejects("tilt: maybe\n", "not true or false");
+  rejects("friction: [1, 2]\n", "not a single value");
+  rejects("- friction\n", "expected a map");
+}
+
+TEST_F(BagAnalyze, CommandLine)
+{
+  const std::string tool = BAG_ANALYZE_PATH, plot = PLOT_ANALYSIS_PATH;
+  const std::string bag = writeBag("cli.bag", 1.0, 0.05, 3.0, false);
+  const std::string params = std::string(PACKAGE_SOURCE_DIR) + "/config/contact_estimator.yaml";
+  std::string out;
+  ASSERT_EQ(run(tool + " -i " + bag + " -o " + kDir + "/cli_out.bag --csv " + kDir + "/cli.csv -p " + params +
+                    " --brush-model auto --set friction=0.6",
+                out),
+            0)
+      << out;
+  for (const char* line : { "301 odometry, 301 estimates", "distance rolled", "energy dissipated", "time sliding",
+                            "peak brush force", "brush models run" })
+    EXPECT_NE(out.find(line), std::string::npos) << line << " missing in\n" << out;
+  const std::string csv = readFile(kDir + "/cli.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 302);  // header and one row per estimate
+  EXPECT_NE(csv.find(",0.6,4,"), std::string::npos) << "friction 0.6 and brush model auto in the rows";
+
+  // errors for people: status 2 (CLI11's own for usage) and the reason
+  EXPECT_EQ(run(tool + " -i " + kDir + "/tf_out.bag --odom-topic /nope", out), 2);
+  EXPECT_NE(out.find("no nav_msgs/Odometry topic /nope"), std::string::npos) << out;
+  EXPECT_EQ(run(tool + " -i " + bag + " -p " + params + " --set frction=1", out), 2);
+  EXPECT_NE(out.find("unknown parameter 'frction'"), std::string::npos) << out;
+  EXPECT_EQ(run(tool + " -i " + bag + " -p " + params + " --start 2 --end 1", out), 2);
+  EXPECT_NE(out.find("time range is empty"), std::string::npos) << out;
+  std::ofstream(kDir + "/not_a.bag") << "hello";
+  EXPECT_EQ(run(tool + " -i " + kDir + "/not_a.bag -p " + params, out), 2);
+  EXPECT_NE(out.find("cannot read bag"), std::string::npos) << out;
+  EXPECT_NE(run(tool + " -i /nonexistent.bag", out), 0);
+
+  // the figures of the analysis
+  ASSERT_EQ(run("/usr/bin/python3 " + plot + " " + kDir + "/cli.csv --output " + kDir + "/figures", out), 0) << out;
+  for (const char* figure : { "forces", "slips", "rolling_resistance", "friction_circle" })
+  {
+    std::ifstream png(kDir + "/figures/cli_" + figure + ".png", std::ios::binary | std::ios::ate);
+    EXPECT_GT(png.tellg(), 10000) << figure;
+  }
+}
+}  // namespace
