@@ -1,5 +1,6 @@
 // node_benchmark: the contact estimator node over real roscpp on loopback. For each brush model it raises
-// the odometry rate until the node falls behind, and reports the highest rate sustained with no backlog and
+// the odometry rate until the node falls behind (a failing rate is tried once more: the machine is shared),
+// and reports the highest rate sustained with no backlog and
 // the p50/p99 latency from odometry stamp to the estimate's arrival. Then the offline replay throughput of a
 // bag by bag_analyze's own path, analyzeBag (messages per second).
 //
@@ -114,8 +115,10 @@ int main(int argc, char** argv)
     client.setConfiguration(config);
     ros::WallDuration(0.3).sleep();
     std::vector<RateResult> results;
-    for (double rate : rates)
+    bool retried = false;  // a shared machine hiccups: a rate that fails is tried once more before it counts
+    for (std::size_t ri = 0; ri < rates.size(); ++ri)
     {
+      const double rate = rates[ri];
       {
         std::lock_guard<std::mutex> lock(mutex);
         latencies.clear();
@@ -144,6 +147,12 @@ int main(int argc, char** argv)
       // sustained: every message answered, and the latency did not build up (no queue growing)
       r.sustained = r.received == r.sent && r.p99 < 0.02;
       results.push_back(r);
+      if (!r.sustained && !retried)
+      {
+        retried = true;
+        --ri;
+        continue;
+      }
       if (!r.sustained)
         break;
     }
