@@ -125,8 +125,11 @@ BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<vo
   const std::set<std::string> selected(o.topics.begin(), o.topics.end());
   const std::set<std::string> ours = { kEstimateTopic, kBrushTopic, kRollingResistanceTopic };
   std::set<std::string> replaced;
+  const auto copied = [&](const std::string& topic) {
+    return out.isOpen() && o.copy_input && (selected.empty() || selected.count(topic));
+  };
   const auto copy = [&](const rosbag::MessageInstance& m) {
-    if (!out.isOpen() || !o.copy_input || (!selected.empty() && !selected.count(m.getTopic())))
+    if (!copied(m.getTopic()))
       return;
     if (ours.count(m.getTopic()))
     {
@@ -160,7 +163,7 @@ BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<vo
       });
       if (!has_contact)
         copy(m);
-      else if (out.isOpen() && o.copy_input && (selected.empty() || selected.count(topic)))
+      else if (copied(topic))
       {
         tf2_msgs::TFMessage rest;
         for (const auto& t : msg->transforms)

@@ -33,12 +33,17 @@ Eigen::Vector3d vector(const geometry_msgs::Vector3& v)
 
 OdometryEstimator::OdometryEstimator(const ContactEstimatorConfig& config) : estimator_(settingsFromConfig(config))
 {
-  configure(config);
+  configureFrames(config);
 }
 
 void OdometryEstimator::configure(const ContactEstimatorConfig& config)
 {
   estimator_.configure(settingsFromConfig(config));  // throws, changing nothing, when invalid
+  configureFrames(config);
+}
+
+void OdometryEstimator::configureFrames(const ContactEstimatorConfig& config)
+{
   ground_frame_ = config.ground_frame;
   contact_frame_ = config.contact_frame.empty() ? std::string("contact_patch") : config.contact_frame;
   publish_tf_ = config.publish_tf;

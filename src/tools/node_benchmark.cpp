@@ -17,23 +17,17 @@
 #include <thread>
 #include <vector>
 
-// Eigen
-#include <Eigen/Geometry>
-
 // ROS
 #include <dynamic_reconfigure/client.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <rosbag/bag.h>
-#include <rosbag/view.h>
 
 // Package
 #include "sphere_contact_estimator/ContactEstimate.h"
 #include "sphere_contact_estimator/ContactEstimatorConfig.h"
 #include "sphere_contact_estimator/ros/bag_analyzer.h"
-#include "sphere_contact_estimator/core/contact_estimator.h"
 #include "sphere_contact_estimator/core/scenario.h"
-#include "sphere_contact_estimator/ros/config_settings.h"
 
 namespace sce = sphere_contact_estimator;
 

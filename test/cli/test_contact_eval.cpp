@@ -1,13 +1,7 @@
 // contact_eval as a user runs it: JSON on stdout that matches the core, and clear failures.
 
 // STL
-#include <cstdio>
-#include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 
 // nlohmann
 #include <nlohmann/json.hpp>
@@ -16,6 +10,7 @@
 #include <gtest/gtest.h>
 
 // Package
+#include "../command_outcome.h"
 #include "../core/cylinder_test_support.h"
 #include "sphere_contact_estimator/core/cylinder_exact.h"
 #include "sphere_contact_estimator/core/cylinder_expansion.h"
@@ -24,35 +19,11 @@ namespace sphere_contact_estimator
 {
 namespace
 {
-struct Outcome
-{
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path)
-{
-  std::ifstream f(path);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using test::Outcome;
 
 Outcome contactEval(const std::string& args)
 {
-  char out_path[] = "/tmp/contact_eval_outXXXXXX";
-  char err_path[] = "/tmp/contact_eval_errXXXXXX";
-  close(mkstemp(out_path));
-  close(mkstemp(err_path));
-  const std::string cmd = std::string(CONTACT_EVAL_PATH) + " " + args + " >" + out_path + " 2>" + err_path;
-  const int raw = std::system(cmd.c_str());
-  Outcome r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  r.out = slurp(out_path);
-  r.err = slurp(err_path);
-  std::remove(out_path);
-  std::remove(err_path);
-  return r;
+  return test::runCommand(std::string(CONTACT_EVAL_PATH) + " " + args);
 }
 
 const std::string kPaper = "cylinder --radius 0.1 --mass-per-length 250 --stiffness 1e7 --damping 5e5 "

@@ -108,6 +108,11 @@ bool finite(const geometry_msgs::WrenchStamped& w)
   return finite(w.wrench.force) && finite(w.wrench.torque);
 }
 
+bool injectedNan(std::size_t n)
+{
+  return n % 997 == 996;
+}
+
 /// Odometry of the n-th message of a manoeuvre that cycles every 8 s through rolling and turning with slip,
 /// braking to standstill, spinning in place, skidding on ice, and a dash past the critical speed; every
 /// 997th message has a NaN twist, which the node must reject. The body frame is yawed along the path.
@@ -135,14 +140,9 @@ nav_msgs::Odometry odometry(std::size_t n, double t, const ros::Time& stamp)
   o.twist.twist.angular.z = omega_z;
   o.twist.twist.linear.x = v + along;
   o.twist.twist.linear.y = left;
-  if (n % 997 == 996)
+  if (injectedNan(n))
     o.twist.twist.linear.x = std::nan("");
   return o;
-}
-
-bool injectedNan(std::size_t n)
-{
-  return n % 997 == 996;
 }
 
 /// The k-th configuration change: every brush and rolling-resistance model, friction down to zero, tilt,

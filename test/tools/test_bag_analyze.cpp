@@ -3,6 +3,7 @@
 // the CSV it writes.
 
 // STL
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -23,8 +24,12 @@
 #include "sphere_contact_estimator/ContactEstimate.h"
 #include "sphere_contact_estimator/ros/bag_analyzer.h"
 #include "sphere_contact_estimator/ros/config_file.h"
+#include "../command_outcome.h"
 
 namespace sce = sphere_contact_estimator;
+using sce::test::Outcome;
+using sce::test::runCommand;
+using sce::test::slurp;
 
 namespace
 {
@@ -81,20 +86,6 @@ sce::BagAnalysisOptions options(const std::string& input)
   o.config.rolling_resistance_model = 1;   // exact
   o.config.robot_mass = 5.0;
   return o;
-}
-
-std::string readFile(const std::string& path)
-{
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-int run(const std::string& command, std::string& output)
-{
-  const std::string log = kDir + "/command.log";
-  const int status = std::system((command + " > " + log + " 2>&1").c_str());
-  output = readFile(log);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 class BagAnalyze : public ::testing::Test
@@ -225,33 +216,35 @@ TEST_F(BagAnalyze, CommandLine)
   const std::string tool = BAG_ANALYZE_PATH, plot = PLOT_ANALYSIS_PATH;
   const std::string bag = writeBag("cli.bag", 1.0, 0.05, 3.0, false);
   const std::string params = std::string(PACKAGE_SOURCE_DIR) + "/config/contact_estimator.yaml";
-  std::string out;
-  ASSERT_EQ(run(tool + " -i " + bag + " -o " + kDir + "/cli_out.bag --csv " + kDir + "/cli.csv -p " + params +
-                    " --brush-model auto --set friction=0.6",
-                out),
-            0)
-      << out;
+  Outcome r = runCommand(tool + " -i " + bag + " -o " + kDir + "/cli_out.bag --csv " + kDir + "/cli.csv -p " + params +
+                         " --brush-model auto --set friction=0.6");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
   for (const char* line : { "301 odometry, 301 estimates", "distance rolled", "energy dissipated", "time sliding",
                             "peak brush force", "brush models run" })
-    EXPECT_NE(out.find(line), std::string::npos) << line << " missing in\n" << out;
-  const std::string csv = readFile(kDir + "/cli.csv");
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << " missing in\n" << r.out;
+  const std::string csv = slurp(kDir + "/cli.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 302);  // header and one row per estimate
   EXPECT_NE(csv.find(",0.6,4,"), std::string::npos) << "friction 0.6 and brush model auto in the rows";
 
-  // errors for people: status 2 (CLI11's own for usage) and the reason
-  EXPECT_EQ(run(tool + " -i " + kDir + "/tf_out.bag --odom-topic /nope", out), 2);
-  EXPECT_NE(out.find("no nav_msgs/Odometry topic /nope"), std::string::npos) << out;
-  EXPECT_EQ(run(tool + " -i " + bag + " -p " + params + " --set frction=1", out), 2);
-  EXPECT_NE(out.find("unknown parameter 'frction'"), std::string::npos) << out;
-  EXPECT_EQ(run(tool + " -i " + bag + " -p " + params + " --start 2 --end 1", out), 2);
-  EXPECT_NE(out.find("time range is empty"), std::string::npos) << out;
+  // errors for people: status 2 (CLI11's own for usage) and the reason on stderr
+  r = runCommand(tool + " -i " + kDir + "/tf_out.bag --odom-topic /nope");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("no nav_msgs/Odometry topic /nope"), std::string::npos) << r.err;
+  r = runCommand(tool + " -i " + bag + " -p " + params + " --set frction=1");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("unknown parameter 'frction'"), std::string::npos) << r.err;
+  r = runCommand(tool + " -i " + bag + " -p " + params + " --start 2 --end 1");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("time range is empty"), std::string::npos) << r.err;
   std::ofstream(kDir + "/not_a.bag") << "hello";
-  EXPECT_EQ(run(tool + " -i " + kDir + "/not_a.bag -p " + params, out), 2);
-  EXPECT_NE(out.find("cannot read bag"), std::string::npos) << out;
-  EXPECT_NE(run(tool + " -i /nonexistent.bag", out), 0);
+  r = runCommand(tool + " -i " + kDir + "/not_a.bag -p " + params);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("cannot read bag"), std::string::npos) << r.err;
+  EXPECT_NE(runCommand(tool + " -i /nonexistent.bag").status, 0);
 
   // the figures of the analysis
-  ASSERT_EQ(run("/usr/bin/python3 " + plot + " " + kDir + "/cli.csv --output " + kDir + "/figures", out), 0) << out;
+  r = runCommand("/usr/bin/python3 " + plot + " " + kDir + "/cli.csv --output " + kDir + "/figures");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
   for (const char* figure : { "forces", "slips", "rolling_resistance", "friction_circle" })
   {
     std::ifstream png(kDir + "/figures/cli_" + figure + ".png", std::ios::binary | std::ios::ate);

@@ -72,6 +72,7 @@ public:
   const std::string& lastTfError() const { return last_tf_error_; }
 
 private:
+  void configureFrames(const ContactEstimatorConfig& config);
   /// Rotation from the odometry's child frame into the ground frame, and the sphere centre there.
   bool groundPose(const nav_msgs::Odometry& msg, const std::string& ground, const tf2::BufferCore& tf,
                   Eigen::Quaterniond& rotation, Eigen::Vector3d& centre, bool& have_centre);
