@@ -113,7 +113,9 @@ CLI::App* addBrushCommand(CLI::App& app, BrushOptions& o)
   BrushParameters& p = o.parameters;
   sub->add_option("--model", o.model, "linear | steady | transient | auto")->capture_default_str();
   sub->add_option("--accuracy-target", p.accuracy_target,
-                  "auto: the cheapest model whose error is below this fraction of mu F_z")->capture_default_str();
+                  "steady: the error bound it integrates to; auto: the cheapest model whose error estimate is below it "
+                  "(a fraction of mu F_z, covering F_x, F_y and M_z / a)")
+      ->capture_default_str();
   sub->add_option("--sigma-x", o.sigma_x, "longitudinal slip sigma_x")->required();
   sub->add_option("--sigma-y", o.sigma_y, "lateral slip sigma_y")->required();
   sub->add_option("--phi", o.phi, "spin phi [1/m]")->required();
@@ -129,7 +131,7 @@ CLI::App* addBrushCommand(CLI::App& app, BrushOptions& o)
   sub->add_option("--stiffness", p.k, "bristle stiffness k [N/m^3]")->required();
   sub->add_option("--load", p.F_z, "vertical load F_z [N]")->required();
   sub->add_option("--friction", p.mu, "friction coefficient mu")->required();
-  sub->add_option("--resolution", p.resolution, "paths (steady) or lattice spacings (transient) across the patch")
+  sub->add_option("--resolution", p.resolution, "transient (and auto's transient): lattice spacings across the patch")
       ->capture_default_str();
   sub->add_option("--pressure", o.pressure, "parabolic | hertzian | uniform")->capture_default_str();
   sub->add_option("--distance", o.distance,
@@ -193,13 +195,13 @@ void runBrushCommand(const BrushOptions& o, std::ostream& out)
   {
     j["model_used"] = toString(automatic->lastModel());
     j["resolution_used"] = automatic->lastResolution();
-    j["accuracy_target"] = p.accuracy_target;
   }
   j["Fx"] = number(f.F_x);
   j["Fy"] = number(f.F_y);
   j["Mz"] = number(f.M_z);
   j["sliding_fraction"] = number(f.sliding_fraction);
   j["max_utilisation"] = number(f.max_utilisation);
+  j["error_estimate"] = number(f.error_estimate);
   j["valid"] = f.valid();
   nlohmann::ordered_json warnings = notes;
   for (const std::string& w : brush_flags::describe(f.flags))
@@ -209,7 +211,10 @@ void runBrushCommand(const BrushOptions& o, std::ostream& out)
   j["tilt"] = p.tilt;
   j["phi_gamma"] = phi_gamma;
   j["phi_psi"] = phi_psi;
-  j["resolution"] = p.resolution;
+  if (ran == BrushModelKind::Steady || ran == BrushModelKind::Auto)
+    j["accuracy_target"] = p.accuracy_target;
+  if (ran == BrushModelKind::Transient || ran == BrushModelKind::Auto)
+    j["resolution"] = p.resolution;
   if (advances)
     j["distance"] = distance;
   out << j.dump(2) << '\n';

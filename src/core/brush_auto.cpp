@@ -1,7 +1,11 @@
 #include "sphere_contact_estimator/core/brush_auto.h"
 
 // STL
+#include <algorithm>
 #include <cmath>
+
+// Boost
+#include <boost/math/constants/constants.hpp>
 
 // Package
 #include "sphere_contact_estimator/core/rolling_frame.h"
@@ -16,49 +20,34 @@ BrushParameters withResolution(BrushParameters p, int n)
   return p;
 }
 
-BrushForces difference(const BrushForces& a, const BrushForces& b)
+// The largest of |dF_x|, |dF_y| and |dM_z| / a, as a fraction of mu F_z.
+double distance(const BrushForces& a, const BrushForces& b, const BrushParameters& p)
 {
-  BrushForces d;
-  d.F_x = a.F_x - b.F_x;
-  d.F_y = a.F_y - b.F_y;
-  d.M_z = a.M_z - b.M_z;
-  return d;
+  const double scale = p.mu * p.F_z;
+  if (!(scale > 0.0))
+    return 0.0;
+  return std::max({ std::abs(a.F_x - b.F_x), std::abs(a.F_y - b.F_y), std::abs(a.M_z - b.M_z) / p.a }) / scale;
+}
+
+// The longest travel through the patch from the leading to the trailing edge: 2a on straight paths; an arc
+// about a tilting centre at |R_gamma| >= a is at most pi/2 times its chord (the half circle), so pi a.
+double longestPath(const BrushParameters& p)
+{
+  return p.tilt ? boost::math::double_constants::pi * p.a : 2.0 * p.a;
 }
 }  // namespace
 
-const std::vector<int>& BrushAuto::ladder()
+BrushAuto::BrushAuto(const BrushParameters& parameters)
+  : BrushModel(parameters), linear_(parameters), steady_(parameters)
 {
-  static const std::vector<int> resolutions{ 4, 8, 12, 16, 24, 32, 48, 64 };
-  return resolutions;
-}
-
-double BrushAuto::transientError(int resolution)
-{
-  return 0.055 * std::pow(8.0 / resolution, 1.5);
-}
-
-double BrushAuto::linearError(const BrushParameters& p, const Eigen::Vector2d& sigma, double phi)
-{
-  const double C_sigma = BrushLinear::slipStiffness(p), C_phi = BrushLinear::spinStiffness(p);
-  const double limit = p.mu * p.F_z;
-  if (!(limit > 0.0))
-    return INFINITY;
-  const double u = (C_sigma * sigma.norm() + 2.0 * C_phi * std::abs(phi)) / limit;
-  return 0.5 * u * u;
-}
-
-BrushAuto::BrushAuto(const BrushParameters& parameters) : BrushModel(parameters), linear_(parameters)
-{
-  for (int n : ladder())
-    steady_.push_back(std::make_unique<BrushSteady>(withResolution(p_, n)));
-  transient_resolution_ = ladder().back();
-  for (int n : ladder())
-    if (n >= 8 && transientError(n) <= p_.accuracy_target)
-    {
-      transient_resolution_ = n;
-      break;
-    }
+  transient_resolution_ = std::min(p_.resolution, kMaxTransientResolution);
   transient_ = std::make_unique<BrushTransient>(withResolution(p_, transient_resolution_));
+}
+
+void BrushAuto::setTransientResolution(int resolution)
+{
+  transient_resolution_ = resolution;
+  transient_->setParameters(withResolution(p_, resolution));
 }
 
 void BrushAuto::rotateFrame(double alpha)
@@ -81,25 +70,22 @@ void BrushAuto::reset()
   have_previous_ = false;
   have_rolling_ = false;
   offset_ = BrushForces{};
+  answered_ = false;
 }
 
-BrushForces BrushAuto::runSteadyFamily(const Slips& s, const Eigen::Vector2d& sigma, double budget, BrushModelKind& model,
-                                       int& resolution)  // budget: the error allowed, relative to mu F_z
+BrushForces BrushAuto::steadyFamily(const Slips& s, const Eigen::Vector2d& sigma, double budget, BrushModelKind& model)
 {
-  if (linearError(p_, sigma, s.phi) <= budget)
+  if (BrushLinear::errorBound(p_, sigma, s.phi, s.phi_gamma, s.phi_psi) <= budget)
   {
     model = BrushModelKind::Linear;
-    resolution = 0;
     cost_ += kLinearCost;
-    return linear_.evaluate(sigma, s.phi);
+    return linear_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi);
   }
-  std::size_t i = 0;
-  while (i + 1 < ladder().size() && steadyError(ladder()[i]) > budget)
-    ++i;
   model = BrushModelKind::Steady;
-  resolution = ladder()[i];
-  cost_ += steadyCost(resolution);
-  return steady_[i]->evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi);
+  BrushSteady::Stats stats;
+  const BrushForces f = steady_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi, budget, &stats);
+  cost_ += kSteadyPathCost * stats.paths;
+  return f;
 }
 
 void BrushAuto::enterTransient()
@@ -110,8 +96,7 @@ void BrushAuto::enterTransient()
   if (have_rolling_)
   {
     const double V = last_rolling_.V_r.norm();
-    const double t = 5.0 * p_.a / V;
-    transient_->update(last_rolling_, t);
+    transient_->update(last_rolling_, 2.5 * longestPath(p_) / V);
     cost_ += transientStepCost(transient_resolution_) * std::ceil(5.0 * transient_resolution_);
   }
   in_transient_ = true;
@@ -126,8 +111,10 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
   const BrushModelKind before = last_model_;
   const int before_resolution = last_resolution_;
 
-  // Conditions under which a steady state describes the contact.
+  // Conditions under which a steady state describes the contact, and the lag of that state.
   bool steady_ok = s.defined;
+  bool renewed = false;  // every bristle entered under these inputs: the state is exactly the steady one
+  double lag = 0.0;
   Eigen::Vector2d sigma = Eigen::Vector2d::Zero();
   RollingFrame frame(s.defined ? s.epsilon : Eigen::Vector2d(0.0, 1.0));
   if (s.defined)
@@ -135,13 +122,15 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
     sigma = frame.toRolling(s.sigma);
     if (p_.tilt && std::abs(s.phi_gamma) * p_.a > 1.0)
       steady_ok = false;  // |R_gamma| < a: no steady state on an inner disc
-    // lag of the steady state: change of the (saturated) linear force over about a/V_r
+    renewed = s.V_r * dt >= longestPath(p_);
     const BrushForces lin = linear_.evaluate(sigma, s.phi);
     const Eigen::Vector2d F(lin.F_x, lin.F_y);
-    if (have_previous_ && dt > 0.0)
+    const double limit = p_.mu * p_.F_z;
+    if (have_previous_ && dt > 0.0 && !renewed && limit > 0.0)
     {
-      const double lag = (F - previous_force_).norm() / dt * (p_.a / s.V_r) / (p_.mu * p_.F_z);
-      if (lag > 0.5 * target)
+      // the change of the (saturated) linear force over the patch's memory, about a of travel
+      lag = (F - previous_force_).norm() / (s.V_r * dt) * p_.a / limit;
+      if (!(lag <= 0.5 * target))
         steady_ok = false;
     }
     previous_force_ = F;
@@ -152,13 +141,10 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
   else
     have_previous_ = false;
 
-  BrushForces out;
-  BrushModelKind model;
-  int resolution;
   if (in_transient_ && steady_ok)
   {
     steady_distance_ += s.V_r * dt;
-    if (steady_distance_ >= 2.0 * p_.a)
+    if (renewed || steady_distance_ >= longestPath(p_))
       in_transient_ = false;  // its state is the steady one now
   }
   else if (in_transient_)
@@ -166,24 +152,34 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
   else if (!steady_ok)
     enterTransient();
 
+  BrushForces out;
+  BrushModelKind model;
+  int resolution = 0;
   if (in_transient_)
   {
     out = transient_->update(kin, dt);
     model = BrushModelKind::Transient;
     resolution = transient_resolution_;
     cost_ += transientStepCost(resolution) * std::max(1.0, std::ceil(s.V_r * dt / (p_.a / resolution)));
+    if (out.error_estimate > target && transient_resolution_ < kMaxTransientResolution)
+    {
+      // finer from the next update: re-seeded warm, the carried difference bridges the switch
+      setTransientResolution(std::min(2 * transient_resolution_, kMaxTransientResolution));
+      enterTransient();
+    }
   }
   else
   {
-    out = runSteadyFamily(s, sigma, target, model, resolution);
-    // keep the transient model's clock: forget its state, it is re-seeded when needed
+    out = steadyFamily(s, sigma, target - lag, model);
+    out.error_estimate += lag;
     frame.forcesToPatch(out);
   }
 
-  // Continuity: at a switch, carry the difference from the previous model's answer and let it decay.
-  if (model != before || resolution != before_resolution)
+  // Continuity: at a switch, carry the difference from the previous model's answer and let it decay (the first
+  // answer after a reset has nothing to be continuous with).
+  if (answered_ && (model != before || resolution != before_resolution))
   {
-    BrushForces previous;
+    BrushForces previous = out;
     if (before == BrushModelKind::Transient)
       previous = transient_->forces();
     else if (s.defined && before == BrushModelKind::Linear)
@@ -193,17 +189,12 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
     }
     else if (s.defined && before == BrushModelKind::Steady)
     {
-      for (std::size_t i = 0; i < ladder().size(); ++i)
-        if (ladder()[i] == before_resolution)
-          previous = steady_[i]->evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi);
+      previous = steady_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi, std::max(0.5 * target, 1e-6));
       frame.forcesToPatch(previous);
     }
-    else
-      previous = out;
-    const BrushForces jump = difference(previous, out);
-    offset_.F_x += jump.F_x;
-    offset_.F_y += jump.F_y;
-    offset_.M_z += jump.M_z;
+    offset_.F_x += previous.F_x - out.F_x;
+    offset_.F_y += previous.F_y - out.F_y;
+    offset_.M_z += previous.M_z - out.M_z;
   }
   const double decay = s.V_r > 0.0 ? std::exp(-s.V_r * dt / (0.5 * p_.a)) : std::exp(-dt / 0.05);
   offset_.F_x *= decay;
@@ -212,6 +203,7 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
   out.F_x += offset_.F_x;
   out.F_y += offset_.F_y;
   out.M_z += offset_.M_z;
+  out.error_estimate += distance(offset_, BrushForces{}, p_);
   // the offset never takes the force off the friction circle
   const double norm = std::hypot(out.F_x, out.F_y), limit = p_.mu * p_.F_z;
   if (norm > limit && norm > 0.0)
@@ -220,8 +212,13 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
     out.F_y *= limit / norm;
   }
   out.flags &= ~brush_flags::kLinearSaturated;  // auto never publishes a saturated linear answer as such
+  if (out.error_estimate > target)
+    out.flags |= brush_flags::kAccuracyNotMet;
+  else
+    out.flags &= ~brush_flags::kAccuracyNotMet;
   last_model_ = model;
   last_resolution_ = resolution;
+  answered_ = true;
   return out;
 }
 

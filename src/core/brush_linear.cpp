@@ -3,7 +3,6 @@
 // STL
 #include <cmath>
 
-// Package
 // Boost
 #include <boost/math/constants/constants.hpp>
 
@@ -50,9 +49,24 @@ BrushForces BrushLinear::evaluate(const Eigen::Vector2d& sigma, double phi) cons
   return f;
 }
 
-BrushForces BrushLinear::evaluate(const Eigen::Vector2d& sigma, double phi, double, double) const
+BrushForces BrushLinear::evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi) const
 {
-  return evaluate(sigma, phi);
+  BrushForces f = evaluate(sigma, phi);
+  f.error_estimate = errorBound(p_, sigma, phi, phi_gamma, phi_psi);
+  return f;
+}
+
+double BrushLinear::errorBound(const BrushParameters& p, const Eigen::Vector2d& sigma, double phi, double phi_gamma,
+                               double phi_psi)
+{
+  const double limit = p.mu * p.F_z;
+  if (!(limit > 0.0))
+    return 0.0;  // no friction or no load: every model gives zero force
+  const double s = (slipStiffness(p) * sigma.norm() + 2.0 * spinStiffness(p) * std::abs(phi)) / limit;
+  double bound = 0.5 * s * s;
+  if (p.tilt)
+    bound += 0.6 * (std::abs(phi_gamma) + std::abs(phi_psi)) * p.a * s;
+  return bound;
 }
 
 }  // namespace sphere_contact_estimator

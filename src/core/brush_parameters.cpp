@@ -34,6 +34,20 @@ const char* toString(PressureDistribution pressure)
   return "unknown";
 }
 
+double peakFactor(PressureDistribution pressure)
+{
+  switch (pressure)
+  {
+    case PressureDistribution::Parabolic:
+      return 2.0;
+    case PressureDistribution::Hertzian:
+      return 1.5;
+    case PressureDistribution::Uniform:
+      return 1.0;
+  }
+  return 1.0;
+}
+
 void BrushParameters::validate() const
 {
   const auto finite = [](double x) { return std::isfinite(x); };
@@ -53,14 +67,15 @@ double BrushParameters::qz(double r2) const
   const double t = 1.0 - r2 / (a * a);
   if (t <= 0.0)
     return 0.0;
+  const double peak = peakFactor(pressure) * F_z / (pi * a * a);
   switch (pressure)
   {
     case PressureDistribution::Parabolic:
-      return 2.0 * F_z / (pi * a * a) * t;
+      return peak * t;
     case PressureDistribution::Hertzian:
-      return 1.5 * F_z / (pi * a * a) * std::sqrt(t);
+      return peak * std::sqrt(t);
     case PressureDistribution::Uniform:
-      return F_z / (pi * a * a);
+      return peak;
   }
   return 0.0;
 }

@@ -237,7 +237,7 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
     o.load = brush_->parameters().F_z;
     o.brush = brush_->update(kin, dt);
     o.brush_model_used = settings_.brush_model;
-    o.brush_resolution = brush_->kind() == BrushModelKind::Linear ? 0 : brush_->parameters().resolution;
+    o.brush_resolution = brush_->kind() == BrushModelKind::Transient ? brush_->parameters().resolution : 0;
     if (const auto* automatic = dynamic_cast<const BrushAuto*>(brush_.get()))
     {
       o.brush_model_used = choiceOf(automatic->lastModel());

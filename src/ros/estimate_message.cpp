@@ -11,7 +11,8 @@ static_assert(ContactEstimate::FLAG_TIME_JUMP_RESET == estimate_flags::kTimeJump
 static_assert(ContactEstimate::BRUSH_FLAG_STANDSTILL == brush_flags::kStandstill &&
               ContactEstimate::BRUSH_FLAG_NO_STEADY_STATE_TILT == brush_flags::kNoSteadyStateTilt &&
               ContactEstimate::BRUSH_FLAG_LINEAR_SATURATED == brush_flags::kLinearSaturated &&
-              ContactEstimate::BRUSH_FLAG_SUBSTEPS_TRUNCATED == brush_flags::kSubstepsTruncated);
+              ContactEstimate::BRUSH_FLAG_SUBSTEPS_TRUNCATED == brush_flags::kSubstepsTruncated &&
+              ContactEstimate::BRUSH_FLAG_ACCURACY_NOT_MET == brush_flags::kAccuracyNotMet);
 static_assert(ContactEstimate::BRUSH_OFF == static_cast<int>(BrushChoice::Off) &&
               ContactEstimate::BRUSH_LINEAR == static_cast<int>(BrushChoice::Linear) &&
               ContactEstimate::BRUSH_STEADY == static_cast<int>(BrushChoice::Steady) &&
@@ -63,6 +64,7 @@ void toMessage(const ContactEstimateData& e, ContactEstimate& m)
   m.brush_moment = e.brush.M_z;
   m.sliding_fraction = e.brush.sliding_fraction;
   m.max_utilisation = e.brush.max_utilisation;
+  m.brush_error_estimate = e.brush.error_estimate;
   m.friction = e.friction;
   m.brush_power = e.brush_power;
   m.brush_flags = e.brush.flags;

@@ -79,7 +79,7 @@ TEST(BrushTransient, ReachesTheSteadyModel)
         const BrushParameters p = figure4Parameters(tilt, n);
         BrushTransient transient(p);
         const BrushForces t = transient.update(ContactKinematics::fromSlips({ sx, sy }, phi, 0.9, 1.0), 4.0 * p.a);
-        const BrushForces s = BrushSteady(figure4Parameters(tilt, 4 * n)).evaluate({ sx, sy }, phi, 0.9 * phi, 0.1 * phi);
+        const BrushForces s = BrushSteady(figure4Parameters(tilt)).evaluate({ sx, sy }, phi, 0.9 * phi, 0.1 * phi, 1e-9);
         d.push_back(forceDistance(t, s, p));
       }
       EXPECT_LT(d[1], std::max(0.5 * d[0], 1e-3)) << "tilt " << tilt << " sigma_x " << sx;
@@ -96,7 +96,7 @@ TEST(BrushTransient, ConvergesWithResolution)
     return m.update(ContactKinematics::fromSlips(sigma, 3.33, 1.0, 1.0), 0.2);
   };
   const BrushParameters p = figure4Parameters();
-  const BrushForces ref = BrushSteady(figure4Parameters(false, 1024)).evaluate(sigma, 3.33, 0.0, 0.0);
+  const BrushForces ref = BrushSteady(figure4Parameters()).evaluate(sigma, 3.33, 0.0, 0.0, 1e-9);
   const double e16 = forceDistance(run(16), ref, p), e32 = forceDistance(run(32), ref, p),
                e64 = forceDistance(run(64), ref, p);
   const double q = std::log2(e16 / e64) / 2.0;

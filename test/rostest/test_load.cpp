@@ -96,7 +96,8 @@ bool finite(const sce::ContactEstimate& e)
 {
   const auto& r = e.rolling_resistance;
   for (double x : { e.rolling_speed, e.heading, e.turn_rate, e.spin, e.spin_tilt, e.spin_turn, e.tilt_ratio,
-                    e.patch_radius, e.load, e.brush_moment, e.sliding_fraction, e.max_utilisation, e.compute_time,
+                    e.patch_radius, e.load, e.brush_moment, e.sliding_fraction, e.max_utilisation, e.brush_error_estimate,
+                    e.compute_time,
                     r.speed, r.h, r.xi_plus, r.xi_minus, r.force, r.torque, r.mu_roll })
     if (!std::isfinite(x))
       return false;

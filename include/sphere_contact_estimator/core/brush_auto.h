@@ -2,7 +2,6 @@
 
 // STL
 #include <memory>
-#include <vector>
 
 // Package
 #include "sphere_contact_estimator/core/brush_linear.h"
@@ -11,26 +10,25 @@
 
 namespace sphere_contact_estimator
 {
-/// Per update, the cheapest brush model whose error estimate meets BrushParameters::accuracy_target
-/// (relative to mu F_z). The estimates, each defensible on its own:
+/// Per update, the cheapest brush model whose error estimate at the point in hand meets
+/// BrushParameters::accuracy_target (a fraction of mu F_z), and that estimate in BrushForces::error_estimate.
 ///
-/// - linear: exact in steady state while no bristle reaches the bound. With the parabolic pressure the
-///   trailing edge always slides; for a pure slip its band costs 0.35 (F_sigma / mu F_z)^2 (derived: the band
-///   is x_L + x < |sigma| / c, c = 2 mu F_z / (pi a^4 k)), and spin raises the utilisation of the whole patch
-///   by C_phi |phi| / mu F_z. The bound used, 0.5 ((C_sigma |sigma| + 2 C_phi |phi|) / mu F_z)^2, holds with a
-///   margin (at most 0.69 of it) against the steady model at resolution 64 over random slips and spins
-///   (test_brush_auto).
-/// - steady at resolution n: 0.009 (8 / n), a first-order bound on the measured errors (docs/benchmarks.md).
-/// - steady instead of transient: the bristle state remembers about one patch transit, so using the steady
-///   state lags the true one by about its change over a/V_r: |dF/dt| a / V_r, with dF the change of the
-///   linear force between updates.
-/// - transient at resolution n: 0.055 (8 / n)^1.5, a bound on the measured errors.
+/// - A steady state describes the contact when the slips are defined, |R_gamma| >= a with tilt, and either
+///   the step rolled at held inputs further than the longest path through the patch (V_r dt >= that length:
+///   every bristle then entered under these inputs, so the state is exactly the steady one, whatever came
+///   before), or the inputs change slowly: the lag of the steady state behind the true one, estimated as the
+///   change of the linear force over the memory of the patch, |dF/ds| a (its first-order value for adhesion
+///   is 3 pi / 16 a), is below half the target. Otherwise the transient model runs.
+/// - In a steady state: the linear model if its error bound meets the budget left by the lag,
+///   else the steady model to that budget, which carries its own bound (BrushSteady). The linear bound is
+///   BrushLinear::errorBound.
+/// - The transient model at its resolution reports its own estimate (BrushTransient); when that exceeds the
+///   target the resolution doubles (up to kMaxTransientResolution) for the next updates.
 ///
-/// Standstill, |R_gamma| < a with tilt, and unsteady inputs take the transient model. It is left only after
-/// the steady conditions have held over one transit (2a travelled), when its state is the steady one; it is
-/// entered from a steady state by rolling it to that state at the last rolling inputs. At every switch the
-/// published forces carry the difference between the two models and let it decay over a quarter transit,
-/// so they do not jump.
+/// The transient model is left only after the steady conditions have held over one transit (2a travelled),
+/// when its state is the steady one, and entered from a steady state by rolling it to that state at the last
+/// rolling inputs. At every switch the published forces carry the difference between the two models and let
+/// it decay over a quarter transit, so they do not jump; the carried difference counts in the estimate.
 class BrushAuto : public BrushModel
 {
 public:
@@ -43,33 +41,27 @@ public:
   void rotateFrame(double alpha) override;
   BrushModelKind kind() const override { return BrushModelKind::Auto; }
 
-  /// The model that produced the last update, and its resolution (0 for linear).
+  /// The model that produced the last update, and its resolution (0 for linear and steady).
   BrushModelKind lastModel() const { return last_model_; }
   int lastResolution() const { return last_resolution_; }
-  /// Estimated cost of all updates so far [ns], from the per-evaluation costs of docs/benchmarks.md.
+  /// Estimated cost of all updates so far [ns] (per-evaluation costs measured in docs/benchmarks.md).
   double cost() const { return cost_; }
-  /// The resolution of its transient model: the smallest that meets the target.
+  /// The resolution its transient model runs at now.
   int transientResolution() const { return transient_resolution_; }
 
-  /// Error bounds, relative to mu F_z.
-  static double linearError(const BrushParameters& p, const Eigen::Vector2d& sigma, double phi);
-  static double steadyError(int resolution) { return 0.009 * 8.0 / resolution; }
-  static double transientError(int resolution);
-  /// Estimated cost of one evaluation [ns] (docs/benchmarks.md, this machine kind).
-  static double steadyCost(int resolution) { return 110.0 * resolution * resolution; }
-  static double transientStepCost(int resolution) { return 55.0 * resolution * resolution; }
+  /// Estimated cost [ns] of one evaluation (docs/benchmarks.md, this machine kind).
   static constexpr double kLinearCost = 60.0;
-
-  /// The resolutions the auto model chooses from.
-  static const std::vector<int>& ladder();
+  static constexpr double kSteadyPathCost = 250.0;
+  static double transientStepCost(int resolution) { return 55.0 * resolution * resolution; }
+  static constexpr int kMaxTransientResolution = 128;
 
 private:
-  BrushForces runSteadyFamily(const Slips& s, const Eigen::Vector2d& sigma, double error_budget, BrushModelKind& model,
-                              int& resolution);
+  BrushForces steadyFamily(const Slips& s, const Eigen::Vector2d& sigma, double budget, BrushModelKind& model);
   void enterTransient();
+  void setTransientResolution(int resolution);
 
   BrushLinear linear_;
-  std::vector<std::unique_ptr<BrushSteady>> steady_;  // one per ladder resolution
+  BrushSteady steady_;
   std::unique_ptr<BrushTransient> transient_;
   int transient_resolution_ = 16;
   bool in_transient_ = false;
@@ -79,6 +71,7 @@ private:
   ContactKinematics last_rolling_;  // the last inputs with V_r above standstill
   bool have_rolling_ = false;
   BrushForces offset_;  // carried difference at the last switch
+  bool answered_ = false;  // an answer since the last reset: switches are then smoothed
   BrushModelKind last_model_ = BrushModelKind::Linear;
   int last_resolution_ = 0;
   double cost_ = 0.0;

@@ -14,6 +14,7 @@ constexpr std::uint32_t kStandstill = 1u << 0;           ///< V_r below the stan
 constexpr std::uint32_t kNoSteadyStateTilt = 1u << 1;    ///< |R_gamma| < a: no steady state on an inner disc (Fig. 2)
 constexpr std::uint32_t kLinearSaturated = 1u << 2;      ///< linear model beyond mu F_z: force scaled back
 constexpr std::uint32_t kSubstepsTruncated = 1u << 3;    ///< transient: step too long, fewer substeps than accuracy wants
+constexpr std::uint32_t kAccuracyNotMet = 1u << 4;       ///< error_estimate above the accuracy target (budget spent)
 constexpr std::uint32_t kInvalidatingFlags = kStandstill | kNoSteadyStateTilt | kLinearSaturated;
 
 std::vector<std::string> describe(std::uint32_t flags);
@@ -28,6 +29,9 @@ struct BrushForces
   double M_z = 0.0;               ///< about the patch centre, integral of (x q_y - y q_x) [N m]
   double sliding_fraction = 0.0;  ///< share of the patch area where the bristles slide [-]
   double max_utilisation = 0.0;   ///< largest |q_t| / (mu q_z) over the patch [-]
+  /// Bound on the error of this answer against the model's exact solution, as a fraction of mu F_z: it covers
+  /// each of F_x, F_y and M_z / a [-]
+  double error_estimate = 0.0;
   std::uint32_t flags = 0;        ///< brush_flags bits
 
   bool valid() const { return (flags & brush_flags::kInvalidatingFlags) == 0; }

@@ -22,9 +22,19 @@ public:
   BrushModelKind kind() const override { return BrushModelKind::Linear; }
 
   /// Forces from slips in the epsilon = (0, 1) frame; the split of phi into tilt and turn is a
-  /// second-order effect the linear theory leaves out.
+  /// second-order effect the linear theory leaves out. error_estimate: errorBound.
   BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi) const override;
   BrushForces evaluate(const Eigen::Vector2d& sigma, double phi) const;
+
+  /// Bound on this model's error against the steady model with limited friction at these slips, as a fraction of
+  /// mu F_z: 0.5 s^2 + 0.6 (|phi_gamma| + |phi_psi|) a s with tilt, s = (C_sigma |sigma| + 2 C_phi |phi|) / (mu F_z).
+  /// Without tilt, the trailing-edge sliding band of the parabolic pressure costs 0.35 s^2 for a pure slip
+  /// (derived: the band is x_L + x < |sigma| / c, c = 2 mu F_z / (pi a^4 k)); the Hertzian and uniform pressures
+  /// cost less. With tilt the curved paths and the turn coupling, which the linear theory leaves out, change the
+  /// forces in proportion to the turn across the patch. Both constants hold with a margin over random operating
+  /// points, all three pressures (test_brush_auto, bench/brush_accuracy).
+  static double errorBound(const BrushParameters& p, const Eigen::Vector2d& sigma, double phi, double phi_gamma,
+                           double phi_psi);
 
   /// eq. 62 for any parameters: C_sigma = 8/3 k a^3 [N], C_phi = 3 pi a / 32 C_sigma [N m].
   static double slipStiffness(const BrushParameters& p);

@@ -12,6 +12,9 @@ enum class PressureDistribution
 
 const char* toString(PressureDistribution pressure);
 
+/// q_z at the centre over the mean pressure F_z / (pi a^2): 2 (parabolic), 1.5 (Hertzian), 1 (uniform).
+double peakFactor(PressureDistribution pressure);
+
 /// Parameters of the brush model of a spherical wheel (Romano et al.), SI units.
 struct BrushParameters
 {

@@ -4,27 +4,27 @@
 #include <functional>
 
 // Package
+#include "sphere_contact_estimator/core/bristle_path.h"
 #include "sphere_contact_estimator/core/brush_model.h"
 
 namespace sphere_contact_estimator
 {
-/// Steady-state bristle field on a discretised patch, with limited friction (Romano et al. Sects. 3, 4, 6).
+/// Steady-state bristle field with limited friction (Romano et al. Sects. 3, 4, 6), to a requested accuracy.
 ///
-/// In the frame where epsilon = (0, 1) the characteristics (bristle paths) are the lines y = const
-/// (eq. 18a) or, with tilt, circles about the tilting centre (0, 1/phi_gamma) (eq. 44a). Along each the
-/// bristle obeys du/dsigma_s = sigma + A_phi x [+ A_phi_psi u with tilt] (eqs. 11, 32), starting
-/// undeformed at the leading edge (eq. 8): without friction this is eq. 23 resp. eq. 51. With friction
-/// the deflection is capped as it goes: where adhesion would need |k u| > mu q_z the bristle slides with
-/// |q| = mu q_z along the rigid sliding field sigma + A_phi x (Sect. 6), and where the bound later
-/// exceeds what adhesion needs it re-adheres from its capped deflection (conventions.md).
+/// In the frame where epsilon = (0, 1) the characteristics (bristle paths) are the lines y = const (eq. 18a)
+/// or, with tilt, circles about the tilting centre (0, 1/phi_gamma) (eq. 44a). Along each the bristle obeys
+/// du/dsigma_s = sigma + A_phi x [+ A_phi_psi u with tilt] (eqs. 11, 32), starting undeformed at the leading
+/// edge (eq. 8): without friction this is eq. 23 resp. eq. 51. With friction (eq. 4) it slides where |k u|
+/// would exceed mu q_z, with |q| = mu q_z along the rigid sliding field sigma + A_phi x (Sect. 6), and
+/// re-adheres from its capped deflection where the bound grows along the path faster than that field pushes
+/// it (docs: the re-adhesion region G). Both events are located exactly on every path (solvePath); the
+/// pieces between them are integrated exactly (adhesion) or by graded Gauss rules (sliding); across paths
+/// an adaptive Gauss-Kronrod quadrature, split where the event structure changes, integrates until its
+/// error estimate meets the tolerance (integratePatch).
 ///
-/// Discretisation: `resolution` paths at y = a sin(theta) (or rho = |R_gamma| + a sin(theta)) with
-/// theta at the midpoints of equal intervals, so the path lengths' square-root end behaviour is
-/// smoothed out; kStepsPerPath x `resolution` equal steps along each path (where a bristle reaches and
-/// leaves the bound matters more than the spacing across paths: at the same cost, 4 steps per path
-/// spacing cut the error of slip with spin fivefold, docs/benchmarks.md), integrated by the exact rotation of the turn
-/// coupling and the midpoint rule for the drive; forces by the midpoint rule along paths, with the
-/// weights normalised so that the discrete integral of q_z is F_z (then |F_t| <= mu F_z exactly).
+/// The tolerance is BrushParameters::accuracy_target, a fraction of mu F_z bounding each of F_x, F_y and
+/// M_z / a; every answer carries its estimate in BrushForces::error_estimate (flagged kAccuracyNotMet when
+/// the path budget ran out first). `resolution` is not used.
 ///
 /// |R_gamma| < a: no steady state on an inner disc (Fig. 2): flagged, zero forces; fall back to the
 /// transient model. Standstill: flagged, zero forces.
@@ -34,22 +34,36 @@ public:
   explicit BrushSteady(const BrushParameters& parameters);
   BrushModelKind kind() const override { return BrushModelKind::Steady; }
 
-  /// phi_gamma and phi_psi are used with tilt on only.
+  /// Forces to the parameters' accuracy target; phi_gamma and phi_psi are used with tilt on only.
   BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi) const override;
+  /// What one evaluation took.
+  struct Stats
+  {
+    int paths = 0;  ///< characteristics solved
+  };
+  /// The same to `tolerance` (a fraction of mu F_z), in (0, 1].
+  BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi, double tolerance,
+                       Stats* stats = nullptr) const;
 
-  /// The same, showing every node of the discretised field to visit(x, u, sliding) (for drawing the zones).
+  /// The same, and the field on a regular grid of paths and points along them to visit(x, u, sliding) [m]
+  /// (for drawing the zones).
   using Visitor = std::function<void(const Eigen::Vector2d& x, const Eigen::Vector2d& u, bool sliding)>;
   BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi,
                        const Visitor& visit) const;
 
-private:
-  BrushForces integrate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi,
-                        const Visitor* visit) const;
+  /// The dimensionless problem of these slips (BristleField): deflections in units of mu q_z(0) / k, lengths
+  /// in units of a. False (and no field) when there is nothing to integrate: no friction or no load.
+  bool field(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi, BristleField& out) const;
 
-  /// Tilt spin below which the paths count as straight: |R_gamma| > 1e9 a.
-  static constexpr double kStraightPathTolerance = 1e-9;
-  /// Steps along each path per path across the patch.
-  static constexpr int kStepsPerPath = 4;
+  /// Largest number of paths one evaluation may solve (about 2 ms); beyond, kAccuracyNotMet.
+  static constexpr int kMaxPaths = 20000;
+  /// Paths and points per path shown to a visitor.
+  static constexpr int kVisitPaths = 24;
+  static constexpr int kVisitPoints = 24;
+
+private:
+  BrushForces solve(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi, double tolerance,
+                    const Visitor* visit, Stats* stats = nullptr) const;
 };
 
 }  // namespace sphere_contact_estimator

@@ -27,7 +27,17 @@ namespace sphere_contact_estimator
 /// crossing time is interpolated within the substep) and is dropped when it leaves. Limited friction caps
 /// it after every substep (FrictionCap). Forces are the lattice sum of k u over the bristles inside the
 /// patch, with the cell weight normalised so that the lattice sum of q_z is F_z (then |F_t| <= mu F_z
-/// exactly).
+/// exactly). At the onset of sliding the deflection jumps onto the sliding field, and at the patch edge the
+/// field ends: a plain lattice sum across such a jump is first order, so each bristle records how far it has
+/// travelled since its onset and the jump there, and the sum corrects the part of its cell (along its
+/// motion) that lies on the other side of the jump or of the edge. That makes the sum second order where the
+/// lattice rows follow the rolling direction, as in the estimator's contact frame.
+///
+/// error_estimate: the largest change of the forces (F_x, F_y, M_z / a, a fraction of mu F_z) when the sum
+/// is taken over any of the four sub-lattices of twice the spacing instead; the sum's error falls at least as
+/// fast as the spacing, so the coarser sum is at least as far off. What no lattice row crosses (a re-adhering
+/// streak narrower than the spacing, where a spin pole lies in the front of the patch) no sum sees: the
+/// steady model resolves those exactly.
 ///
 /// update() advances by the caller's dt in substeps that keep each bristle's path within half a lattice
 /// spacing and every rotation below 0.1 rad; at most kMaxSubsteps of them (flagged when that is short).
@@ -80,6 +90,7 @@ private:
   void allocate();  // sizes the lattice for p_ and resets
   void substep(const ContactKinematics& kin, double dt);
   void recentre();
+  double streakBound(const ContactKinematics& kin) const;
 
   double h_;                      // lattice spacing
   int w_;                         // window width in lattice points
@@ -89,9 +100,16 @@ private:
   std::vector<Eigen::Vector2d> u_;     // deflection per lattice point
   std::vector<std::uint8_t> inside_;   // inside the patch after the last substep
   std::vector<std::uint8_t> sliding_;  // capped in the last substep
+  std::vector<double> slip_travel_;    // travel since the onset of sliding (infinite while adhering)
+  std::vector<Eigen::Vector2d> jump_;  // deflection before minus after that onset
   // scratch for recentre(), sized once: the hot path does not allocate
-  std::vector<Eigen::Vector2d> u_scratch_;
+  std::vector<Eigen::Vector2d> u_scratch_, jump_scratch_;
   std::vector<std::uint8_t> inside_scratch_, sliding_scratch_;
+  std::vector<double> slip_travel_scratch_;
+  // the rigid motion of the last substep, for the direction each bristle moves in
+  Eigen::Vector2d V_r_ = Eigen::Vector2d::Zero();
+  double omega_gamma_ = 0.0;
+  double streak_estimate_ = 0.0;  // streakBound of the last update's inputs
 };
 
 }  // namespace sphere_contact_estimator

@@ -56,7 +56,7 @@ struct ContactEstimateData
 
   BrushChoice brush_model = BrushChoice::Off;       ///< as configured
   BrushChoice brush_model_used = BrushChoice::Off;  ///< the model that ran (differs under auto)
-  int brush_resolution = 0;                         ///< its resolution (0: linear or off)
+  int brush_resolution = 0;                         ///< the transient model's resolution (0: linear, steady, off)
   BrushForces brush;          ///< F_x, F_y [N], M_z [N m] on the sphere, ROS contact frame
   double friction = 0.0;      ///< mu in force (0 with the brush model off)
   /// Power the ground's stresses take from the sphere's contact material, -(F_t . V_s + M_z omega_z) [W]:

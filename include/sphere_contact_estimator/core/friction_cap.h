@@ -22,9 +22,7 @@ public:
   explicit FrictionCap(const BrushParameters& p)
     : pressure_(p.pressure), inv_a2_(1.0 / (p.a * p.a)), edge_(1.0 - 1e-12), mu_over_k_(p.mu / p.k)
   {
-    const double mean = p.F_z / (M_PI * p.a * p.a);  // F_z / (pi a^2)
-    q0_ = pressure_ == PressureDistribution::Parabolic ? 2.0 * mean :
-                                                         (pressure_ == PressureDistribution::Hertzian ? 1.5 * mean : mean);
+    q0_ = peakFactor(pressure_) * p.F_z / (M_PI * p.a * p.a);  // q_z at the centre
   }
 
   struct Result

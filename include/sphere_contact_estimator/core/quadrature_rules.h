@@ -1,0 +1,29 @@
+#pragma once
+
+// STL
+#include <array>
+
+namespace sphere_contact_estimator::numerics
+{
+/// An m-point Gauss-Legendre rule on [-1, 1]: exact for polynomials of degree 2m - 1.
+struct GaussLegendre
+{
+  static constexpr int kMaxPoints = 32;
+  int m = 0;
+  std::array<double, kMaxPoints> x{}, w{};
+};
+
+/// The m-point rule, 1 <= m <= GaussLegendre::kMaxPoints (nodes by Newton's method on P_m, built once).
+const GaussLegendre& gaussLegendre(int m);
+
+/// The 15-point Gauss-Kronrod rule on [-1, 1] with its embedded 7-point Gauss rule (Boost.Math's nodes):
+/// x[i] ascending, wk the Kronrod weights, wg the Gauss weights (0 at the 8 Kronrod-only nodes). The
+/// difference of the two sums is the classic error estimate of the Kronrod sum.
+struct GaussKronrod15
+{
+  std::array<double, 15> x{}, wk{}, wg{};
+};
+
+const GaussKronrod15& gaussKronrod15();
+
+}  // namespace sphere_contact_estimator::numerics
