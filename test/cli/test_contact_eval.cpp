@@ -177,7 +177,7 @@ TEST(ContactEvalBrush, ModelsAgreeWhereTheyShould)
   const auto lin = nlohmann::json::parse(contactEval("brush --model linear " + small).out);
   const auto st = nlohmann::json::parse(contactEval("brush --model steady " + small).out);
   const auto tr = nlohmann::json::parse(contactEval("brush --model transient " + small).out);
-  for (const char* key : { "Fx", "Fy", "Mz", "sliding_fraction", "max_utilisation", "valid", "warnings" })
+  for (const char* key : { "Fx", "Fy", "Mz", "sliding_fraction", "max_utilisation", "error_estimate", "valid", "warnings" })
     EXPECT_TRUE(st.contains(key)) << key;
   for (const auto* j : { &st, &tr })
   {
@@ -198,7 +198,7 @@ TEST(ContactEvalBrush, ModelsAgreeWhereTheyShould)
 TEST(ContactEvalBrush, AutoMeetsItsTargetAndSaysWhatRan)
 {
   const std::string point = "--sigma-x 0.05 --sigma-y 0.02 --phi 3.33 " + kFig4;
-  const auto reference = nlohmann::json::parse(contactEval("brush --model steady --resolution 256 " + point).out);
+  const auto reference = nlohmann::json::parse(contactEval("brush --model steady --accuracy-target 1e-9 " + point).out);
   for (double target : { 0.05, 0.01, 0.002 })
   {
     const Outcome r = contactEval("brush --model auto --accuracy-target " + std::to_string(target) + " " + point);
@@ -213,6 +213,27 @@ TEST(ContactEvalBrush, AutoMeetsItsTargetAndSaysWhatRan)
   const auto small = nlohmann::json::parse(contactEval("brush --model auto --sigma-x 0.0001 --sigma-y 0 --phi 0 " + kFig4).out);
   EXPECT_EQ(small["model_used"], "linear");
   EXPECT_NE(contactEval("brush --model auto --accuracy-target 0 --sigma-x 0 --sigma-y 0 --phi 0 " + kFig4).status, 0);
+}
+
+TEST(ContactEvalBrush, SteadyToItsAccuracyTarget)
+{
+  // The example point (a small zone of re-adhering bristles around a spin pole in the patch): at
+  // --accuracy-target 1e-4 F_y is within 1e-4 mu F_z of the converged 4.79225233 N, and the estimate says so.
+  const std::string point = "--patch-radius 0.030132135540406 --load 721.6240066650845 --friction 0.8447950430510605 "
+                            "--stiffness 195451215.1840554 --sigma-x -0.009505213968784471 "
+                            "--sigma-y 0.004217246676809281 --phi -9.057291504918961 ";
+  const double muFz = 0.8447950430510605 * 721.6240066650845;
+  for (double target : { 1e-2, 1e-4 })
+  {
+    const Outcome r = contactEval("brush --model steady --accuracy-target " + std::to_string(target) + " " + point);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_NEAR(j["Fy"].get<double>(), 4.79225233, target * muFz);
+    EXPECT_NEAR(j["Fx"].get<double>(), -28.29525733, target * muFz);
+    EXPECT_LE(j["error_estimate"].get<double>(), target);
+    EXPECT_EQ(j["accuracy_target"].get<double>(), target);
+    EXPECT_FALSE(j.contains("resolution"));  // the steady model has none
+  }
 }
 
 TEST(ContactEvalBrush, InnerDiscFallsBackToTransient)

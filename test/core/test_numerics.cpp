@@ -1,0 +1,190 @@
+// The numerical building blocks of the steady solver: real-root isolation of polynomials on an interval, and
+// the Gauss-Legendre and Gauss-Kronrod rules.
+
+// STL
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <random>
+#include <vector>
+
+// GTest
+#include <gtest/gtest.h>
+
+// Package
+#include "sphere_contact_estimator/core/polynomial_roots.h"
+#include "sphere_contact_estimator/core/quadrature_rules.h"
+
+namespace sphere_contact_estimator::numerics
+{
+namespace
+{
+// Coefficients of c * prod (s - r_i) * prod ((s - z_j)(s - conj z_j)), ascending powers.
+std::vector<double> fromRoots(double c, const std::vector<double>& real, const std::vector<std::pair<double, double>>& complex)
+{
+  std::vector<double> p{ c };
+  const auto times = [&p](const std::vector<double>& q) {
+    std::vector<double> r(p.size() + q.size() - 1, 0.0);
+    for (std::size_t i = 0; i < p.size(); ++i)
+      for (std::size_t j = 0; j < q.size(); ++j)
+        r[i + j] += p[i] * q[j];
+    p = r;
+  };
+  for (double r : real)
+    times({ -r, 1.0 });
+  for (const auto& [re, im] : complex)
+    times({ re * re + im * im, -2.0 * re, 1.0 });
+  return p;
+}
+
+TEST(PolynomialRoots, FindsEveryRealRootOfRandomPolynomials)
+{
+  // Degrees 1 to 12: simple real roots inside and outside the interval, complex pairs, random scale and sign.
+  // (Higher degrees over a whole interval lose digits in the change of basis; the solver's polynomials of higher
+  // degree are Taylor series expanded at the interval's start, tested below.)
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 400; ++trial)
+  {
+    const int n_real = 1 + trial % 6, n_complex = trial % 4;
+    std::vector<double> real;
+    std::vector<std::pair<double, double>> complex;
+    for (int i = 0; i < n_real; ++i)
+      real.push_back(1.5 * u(rng));
+    for (int i = 0; i < n_complex; ++i)
+      complex.emplace_back(u(rng), 0.01 + std::abs(u(rng)));
+    std::sort(real.begin(), real.end());
+    if (std::adjacent_find(real.begin(), real.end(), [](double a, double b) { return b - a < 1e-3; }) != real.end())
+      continue;  // well separated: the expected list is then unambiguous
+    const std::vector<double> c = fromRoots(std::pow(10.0, 4.0 * u(rng)), real, complex);
+    const int n = static_cast<int>(c.size()) - 1;
+    double roots[64];
+    const int k = signChanges(c.data(), n, -1.0, 1.0, roots, 64);
+    std::vector<double> expected;
+    for (double r : real)
+      if (r > -1.0 && r < 1.0)
+        expected.push_back(r);
+    ASSERT_EQ(k, static_cast<int>(expected.size())) << "trial " << trial << " degree " << n;
+    // multiplied-out coefficients carry rounding that moves clustered roots by up to ~1e-9 (Wilkinson)
+    for (int i = 0; i < k; ++i)
+      EXPECT_NEAR(roots[i], expected[i], 1e-8) << "trial " << trial << " degree " << n;
+    if (k > 0)  // max_roots = 1 gives the first
+    {
+      double first;
+      ASSERT_EQ(signChanges(c.data(), n, -1.0, 1.0, &first, 1), 1);
+      EXPECT_NEAR(first, expected.front(), 1e-8);
+    }
+  }
+}
+
+TEST(PolynomialRoots, TouchesAreNoSignChanges)
+{
+  // (s - 0.3)^2 (s + 0.5): one sign change (at -0.5), the double root is a touch; so is (s - 0.1)^2 + 0.
+  const std::vector<double> c = fromRoots(2.0, { 0.3, 0.3, -0.5 }, {});
+  double roots[4];
+  ASSERT_EQ(signChanges(c.data(), 3, -1.0, 1.0, roots, 4), 1);
+  EXPECT_NEAR(roots[0], -0.5, 1e-12);
+  const std::vector<double> q = fromRoots(1.0, { 0.1, 0.1 }, {});
+  EXPECT_EQ(signChanges(q.data(), 2, -1.0, 1.0, roots, 4), 0);
+  const std::vector<double> quartic = fromRoots(1.0, { 0.1, 0.1, 0.7, 0.7 }, {});
+  EXPECT_EQ(signChanges(quartic.data(), 4, -1.0, 1.0, roots, 4), 0);
+}
+
+TEST(PolynomialRoots, ClusteredRootsAndWideScales)
+{
+  // Roots 1e-6 apart (between them the cubic is ~1e-13, well above rounding), and a polynomial whose
+  // coefficients span 1e-12 to 1e12 (huge slips make such ones).
+  const std::vector<double> c = fromRoots(1.0, { 0.2, 0.2 + 1e-6, -0.7 }, {});
+  double roots[4];
+  ASSERT_EQ(signChanges(c.data(), 3, -1.0, 1.0, roots, 4), 3);
+  EXPECT_NEAR(roots[1], 0.2, 1e-10);  // a pair 1e-6 apart: each to ~eps / 1e-6
+  EXPECT_NEAR(roots[2], 0.2 + 1e-6, 1e-10);
+  // 1e12 s^2 - 2e-12 s... : roots at 0 and 2e-24 are below any interval here; 1e12 (s - 1e-6)(s - 3e-6)
+  const std::vector<double> d = fromRoots(1e12, { 1e-6, 3e-6 }, {});
+  ASSERT_EQ(signChanges(d.data(), 2, 0.0, 1.0, roots, 4), 2);
+  EXPECT_NEAR(roots[0], 1e-6, 1e-19);
+  EXPECT_NEAR(roots[1], 3e-6, 1e-19);
+}
+
+TEST(PolynomialRoots, TaylorSeriesOfHighDegree)
+{
+  // As the path solver builds them: the series of cos(3 s) - 0.3 and of sin(5 s) e^(-s) - 0.1 to degree 30 about
+  // s = 0, on [0, 1.2]: roots acos(0.3) / 3, and the sign changes of the second found by bisection on the exact
+  // function.
+  double c[31], d[31];
+  for (int k = 0; k <= 30; ++k)
+  {
+    double fact = 1.0;
+    for (int i = 2; i <= k; ++i)
+      fact *= i;
+    c[k] = (k % 2 ? 0.0 : ((k / 2) % 2 ? -1.0 : 1.0)) * std::pow(3.0, k) / fact - (k == 0 ? 0.3 : 0.0);
+    // Im((i 5 - 1)^k) / k!: the series of Im(e^{(5i - 1) s})
+    const std::complex<double> z = std::pow(std::complex<double>(-1.0, 5.0), k);
+    d[k] = z.imag() / fact - (k == 0 ? 0.1 : 0.0);
+  }
+  double roots[8];
+  ASSERT_EQ(signChanges(c, 30, 0.0, 1.2, roots, 8), 1);
+  EXPECT_NEAR(roots[0], std::acos(0.3) / 3.0, 1e-13);
+  const auto g = [](double s) { return std::sin(5.0 * s) * std::exp(-s) - 0.1; };
+  const int k = signChanges(d, 30, 0.0, 1.2, roots, 8);
+  ASSERT_EQ(k, 2);  // the third change, past 1.2, is outside
+  for (int i = 0; i < k; ++i)
+    EXPECT_NEAR(g(roots[i]), 0.0, 1e-12);
+}
+
+TEST(QuadratureRules, GaussLegendreIsExactToDegree2mMinus1)
+{
+  for (int m = 1; m <= GaussLegendre::kMaxPoints; ++m)
+  {
+    const GaussLegendre& g = gaussLegendre(m);
+    for (int degree = 0; degree <= 2 * m - 1; ++degree)
+    {
+      double sum = 0.0;
+      for (int i = 0; i < m; ++i)
+        sum += g.w[i] * std::pow(g.x[i], degree);
+      const double exact = degree % 2 ? 0.0 : 2.0 / (degree + 1);
+      EXPECT_NEAR(sum, exact, 1e-14) << "m " << m << " degree " << degree;
+    }
+    const double missed = [&] {  // and not beyond: x^(2m) is integrated with an error
+      double sum = 0.0;
+      for (int i = 0; i < m; ++i)
+        sum += g.w[i] * std::pow(g.x[i], 2 * m);
+      return std::abs(sum - 2.0 / (2 * m + 1));
+    }();
+    if (m <= 20)  // beyond, x^(2m) is integrated to within rounding anyway
+    {
+      EXPECT_GT(missed, 1e-15) << m;
+    }
+    EXPECT_TRUE(std::is_sorted(g.x.begin(), g.x.begin() + m));
+  }
+  EXPECT_THROW(gaussLegendre(0), std::invalid_argument);
+  EXPECT_THROW(gaussLegendre(GaussLegendre::kMaxPoints + 1), std::invalid_argument);
+}
+
+TEST(QuadratureRules, KronrodAndItsGaussRule)
+{
+  // The 15-point Kronrod rule is exact to degree 22, its embedded 7-point Gauss rule to degree 13.
+  const GaussKronrod15& r = gaussKronrod15();
+  for (int degree = 0; degree <= 22; ++degree)
+  {
+    double k = 0.0, g = 0.0;
+    for (int i = 0; i < 15; ++i)
+    {
+      k += r.wk[i] * std::pow(r.x[i], degree);
+      g += r.wg[i] * std::pow(r.x[i], degree);
+    }
+    const double exact = degree % 2 ? 0.0 : 2.0 / (degree + 1);
+    EXPECT_NEAR(k, exact, 1e-14) << degree;
+    if (degree <= 13)
+    {
+      EXPECT_NEAR(g, exact, 1e-14) << degree;
+    }
+  }
+  int gauss_nodes = 0;
+  for (double w : r.wg)
+    gauss_nodes += w != 0.0;
+  EXPECT_EQ(gauss_nodes, 7);
+}
+
+}  // namespace
+}  // namespace sphere_contact_estimator::numerics
