@@ -23,28 +23,32 @@ constexpr int kMaxSegments = 64;        // per path; beyond, the path is flagged
 constexpr double kSeriesTolerance = 1e-17;
 constexpr int kMaxGIntervals = 8;
 constexpr int kMaxAdhesionSteps = 4096;  // stretches of a radian of turn one adhesion piece may take
-constexpr double kGaussRadius = 6.0;  // a sliding piece whose Bernstein ellipse reaches the pole closer: closed form
+constexpr double kGaussRadius = 6.0;  // graded rules split where the pole's ellipse is closer than this
+constexpr double kClosedFormRadius = 60.0;  // straight sliding pieces in closed form while the pole's is closer
 
 cd timesI(double a, cd z) { return { -a * z.imag(), a * z.real() }; }  // i a z
-// phi_2(i x) = (e^{ix} - 1 - ix) / (ix)^2, without cancellation
+// phi_2(i x) = (e^{ix} - 1 - ix) / (ix)^2 = ((1 - cos x) + i (x - sin x)) / x^2, without cancellation
 cd phi2(double x)
 {
-  if (std::abs(x) < 1e-3)
-    return { 0.5 - x * x / 24.0, x / 6.0 * (1.0 - x * x / 20.0) };
-  const cd ix(0.0, x);
-  return (std::exp(ix) - 1.0 - ix) / (ix * ix);
+  const double x2 = x * x;
+  if (std::abs(x) < 0.1)  // the series to x^8: below 1e-17 of the value
+    return { 0.5 - x2 / 24.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0)), x / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0))) };
+  double sh, ch;
+  ::sincos(0.5 * x, &sh, &ch);
+  return { 2.0 * sh * sh / x2, (x - 2.0 * sh * ch) / x2 };
 }
 
 double dot(cd a, cd b) { return a.real() * b.real() + a.imag() * b.imag(); }  // Re(a conj(b))
 double cross(cd a, cd b) { return a.real() * b.imag() - a.imag() * b.real(); }  // Im(conj(a) b)
 
-// phi_1(i x) = (e^{ix} - 1) / (ix), without cancellation
+// phi_1(i x) = (e^{ix} - 1) / (ix), without cancellation (one sincos of x / 2)
 cd phi1(double x)
 {
   if (std::abs(x) < 1e-4)
     return { 1.0 - x * x / 6.0, 0.5 * x * (1.0 - x * x / 12.0) };
-  const double h = std::sin(0.5 * x);
-  return { std::sin(x) / x, 2.0 * h * h / x };
+  double sh, ch;
+  ::sincos(0.5 * x, &sh, &ch);
+  return { 2.0 * sh * ch / x, 2.0 * sh * sh / x };
 }
 
 // Degree of the series along a path stretch on which the fastest turn is rate * length = x radians. Each
@@ -239,7 +243,8 @@ public:
             break;
           }
         slide(tau, end);
-        if (which < 7)  // a slide to the trailing edge adds no structure: its onset (or the edge) said it all
+        // a slide to the trailing edge adds no structure: its onset said it all
+        if (which < 7)
           signature(8u + static_cast<unsigned>(which));
         tau = end;
         if (tau < p_.length)
@@ -380,6 +385,8 @@ private:
               roots_after = k - 1;
             }
           }
+            if (f_.pressure == PressureDistribution::Uniform && tau_s == 0.0)
+            out_.onset_margin = peak(PP, g.n, s_lo, s_hi);
           if (crossing >= 0.0)
           {
             accumulateAdhesion(U, g, s_lo, crossing - g.tm);
@@ -395,10 +402,11 @@ private:
         }
         u_s = evaluate(U, g.n, g.t1 - g.tm);
       }
-    // no onset before the trailing edge: the same structure as an onset in the last stretch with no root after
-    // it (an onset leaving through the edge shrinks its sliding piece to nothing: no jump)
+    // No onset before the trailing edge. Where the bound vanishes there (parabolic, Hertzian) an onset exists up
+    // to rounding (|u| - f > 0 at the edge unless u = 0): the same structure as an onset in the last stretch with
+    // no root after it. With the uniform pressure the onset really leaves through the edge: a kink across paths.
     end = p_.length;
-    signature(16u + static_cast<unsigned>(std::min(subrange, 15)) * 8u);
+    signature(f_.pressure == PressureDistribution::Uniform ? 15u : 16u + static_cast<unsigned>(std::min(subrange, 15)) * 8u);
     return u_s;
   }
 
@@ -420,6 +428,19 @@ private:
     out_.moment += integrate(M, g.n, s_lo, s_hi);
   }
 
+  // The largest value of a polynomial on [lo, hi]: at an end or where its derivative changes sign.
+  static double peak(const double* c, int n, double lo, double hi)
+  {
+    double d[kSize], cuts[2 * kMaxDegree];
+    for (int k = 1; k <= n; ++k)
+      d[k - 1] = k * c[k];
+    const int nc = numerics::signChanges(d, n - 1, lo, hi, cuts, 2 * kMaxDegree);
+    double best = std::max(numerics::evaluatePolynomial(c, n, lo), numerics::evaluatePolynomial(c, n, hi));
+    for (int k = 0; k < nc; ++k)
+      best = std::max(best, numerics::evaluatePolynomial(c, n, cuts[k]));
+    return best;
+  }
+
   void sampleUtilisation(const cd* U, const Segment& g, double s_lo, double s_hi)
   {
     for (double s : { s_lo, 0.5 * (s_lo + s_hi), s_hi })
@@ -436,7 +457,9 @@ private:
     const cd z = p_.position(tau);
     const cd w = f_.drive(z);
     const double n = std::sqrt(std::norm(w));
-    q = n > 0.0 ? f_.bound(1.0 - p_.edgeDistance(tau)) * w / n : cd(0.0);
+    // only the Hertzian bound, sqrt(1 - r^2), needs 1 - r^2 without cancellation at the edges
+    const double r2 = f_.pressure == PressureDistribution::Hertzian ? 1.0 - p_.edgeDistance(tau) : std::norm(z);
+    q = n > 0.0 ? f_.bound(r2) * w / n : cd(0.0);
     m = cross(z, q);
   }
 
@@ -461,9 +484,24 @@ private:
         star = std::log((zp - centre) / (p_.entry - centre)) / cd(0.0, f_.omega);  // centre + e^{i omega tau}(z_e - centre)
       }
     }
-    if (f_.omega == 0.0 && f_.pressure != PressureDistribution::Hertzian && f_.phi != 0.0 &&
-        bernsteinRadius(a, b, star) < kGaussRadius && slideStraight(a, b))
-      return;
+    if (f_.omega == 0.0 && f_.pressure != PressureDistribution::Hertzian)
+    {
+      // straight, f a polynomial in x: the closed form while the pole is near enough that its differences keep
+      // their digits (they lose about rho^4 eps), a short Gauss rule beyond (a degree-4 polynomial times a
+      // function analytic out to rho: degree 4 exactly plus rho^-2 per further node)
+      const double rho = f_.phi != 0.0 ? bernsteinRadius(a, b, star) : INFINITY;
+      if (rho < kClosedFormRadius && slideStraight(a, b, rho))
+        return;
+      if (rho >= kClosedFormRadius)
+      {
+        const double half = 0.5 * (b - a), C = 64.0 / 15.0 * 8.0 * half;
+        const int m = std::clamp(2 + static_cast<int>(std::ceil(std::log(std::max(C / tolerance_, 1.0)) / (2.0 * std::log(rho)))), 3,
+                                 numerics::GaussLegendre::kMaxPoints);
+        gauss(a, b, m, [&](double tau, cd& q, double& mm) { sliding(tau, q, mm); });
+        out_.error += C * std::pow(rho, -2.0 * (m - 2));
+        return;
+      }
+    }
     if (f_.pressure != PressureDistribution::Hertzian)
     {
       graded(a, b, star, [&](double tau, cd& q, double& m) { sliding(tau, q, m); });
@@ -482,18 +520,20 @@ private:
     }, h);
   }
 
+  // The parameter of the Bernstein ellipse of [lo, hi] through `star`: its semi-axis sum, from the semi-major
+  // axis A = (|t - 1| + |t + 1|) / 2 of the confocal ellipse through t (star mapped onto [-1, 1]).
   static double bernsteinRadius(double lo, double hi, cd star)
   {
     const cd t = (2.0 * star - (lo + hi)) / (hi - lo);
-    const cd r = std::sqrt(t * t - 1.0);
-    return std::sqrt(std::max(std::norm(t + r), std::norm(t - r)));
+    const double A = 0.5 * (std::sqrt(std::norm(t - 1.0)) + std::sqrt(std::norm(t + 1.0)));
+    return A + std::sqrt(std::max(0.0, A * A - 1.0));
   }
 
   // Sliding on a straight path, parabolic or uniform pressure, in closed form: with t = w_y = sigma_y + phi x
   // along the path, f is a polynomial in t and the stress f (A, t) / sqrt(A^2 + t^2), A = w_x, integrates by
   // J_n = int t^n / sqrt(A^2 + t^2) dt = (t^(n-1) R - (n-1) A^2 J_(n-2)) / n. Used where the pole is near the
   // piece (its Gauss rule would be long); there the differences J_n(t_b) - J_n(t_a) lose little.
-  bool slideStraight(double a, double b)
+  bool slideStraight(double a, double b, double rho)
   {
     const double eta = p_.entry.imag(), phi = f_.phi;
     const double A = f_.sigma.real() - phi * eta;
@@ -537,8 +577,28 @@ private:
       return false;
     out_.force += cd(fx, fy);
     out_.moment += m;
-    out_.error += 1e-13 * (b - a);  // rounding: the differences keep all but a few digits here
+    out_.error += 1e-15 * (1.0 + std::pow(rho, 4)) * (b - a);  // rounding: the differences lose about rho^4 eps
     return true;
+  }
+
+  // An m-point Gauss-Legendre rule on [a, b].
+  template <class F>
+  void gauss(double a, double b, int m, const F& g)
+  {
+    const numerics::GaussLegendre& rule = numerics::gaussLegendre(m);
+    const double half = 0.5 * (b - a), mid = 0.5 * (b + a);
+    cd sum = 0.0;
+    double M_sum = 0.0;
+    for (int i = 0; i < m; ++i)
+    {
+      cd q;
+      double mm;
+      g(mid + half * rule.x[i], q, mm);
+      sum += rule.w[i] * q;
+      M_sum += rule.w[i] * mm;
+    }
+    out_.force += half * sum;
+    out_.moment += half * M_sum;
   }
 
   // Gauss-Legendre on [a, b] for an integrand analytic except near `star` (variable: travel, or the angle v
@@ -552,31 +612,21 @@ private:
   {
     const double eps = tolerance_;
     const auto rho = [&](double lo, double hi) { return bernsteinRadius(lo, hi, star); };
-    const auto apply = [&](double lo, double hi) {
-      const double half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
-      const double r = std::clamp(std::sqrt(rho(lo, hi)), 1.5, 3.0);
+    const auto apply = [&](double lo, double hi, double radius) {
+      const double half = 0.5 * (hi - lo);
+      const double r = std::clamp(std::sqrt(radius), 1.5, 3.0);
       const double R = 1.0 + r * half * jacobian, M = 2.0 * R * (1.0 + R * R) * jacobian;
       const double C = 64.0 / 15.0 * M * half / (r * r - 1.0);
-      int m = static_cast<int>(std::ceil(std::log(std::max(C / eps, 1.0)) / (2.0 * std::log(r))));
+      const double log_r = std::log(r);
+      int m = static_cast<int>(std::ceil(std::log(std::max(C / eps, 1.0)) / (2.0 * log_r)));
       m = std::clamp(m, 2, numerics::GaussLegendre::kMaxPoints);
-      const numerics::GaussLegendre& rule = numerics::gaussLegendre(m);
-      cd sum = 0.0;
-      double M_sum = 0.0;
-      for (int i = 0; i < m; ++i)
-      {
-        cd q;
-        double mm;
-        g(mid + half * rule.x[i], q, mm);
-        sum += rule.w[i] * q;
-        M_sum += rule.w[i] * mm;
-      }
-      out_.force += half * sum;
-      out_.moment += half * M_sum;
-      out_.error += C * std::pow(r, -2.0 * m);
+      gauss(lo, hi, m, g);
+      out_.error += C * std::exp(-2.0 * m * log_r);
     };
-    if (rho(a, b) >= kGaussRadius)
+    const double whole = rho(a, b);
+    if (whole >= kGaussRadius)
     {
-      apply(a, b);
+      apply(a, b, whole);
       return;
     }
     // split at the singularity's projection and grade outwards: widths delta, 2 delta, 4 delta, ...
@@ -591,7 +641,8 @@ private:
         double to = from + side * width;
         if ((end - to) * side < 2.0 * width)  // the rest is short: take it in one
           to = end;
-        apply(std::min(from, to), std::max(from, to));
+        const double lo = std::min(from, to), hi = std::max(from, to);
+        apply(lo, hi, rho(lo, hi));
         from = to;
       }
     }

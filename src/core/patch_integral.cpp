@@ -50,12 +50,13 @@ double solveSignChange(const G& g, double a, double b)
   return 0.5 * (a + b);
 }
 
+// Plain data, set when pushed: the integrator holds 512 of them, not cleared per evaluation.
 struct Interval
 {
-  double a = 0.0, b = 0.0;
-  double K[4] = {};   // Kronrod sums of force x, y, moment, sliding area
-  double E[3] = {};   // error bounds of the first three
-  bool gap = false;   // a located change of structure: bounded, never refined
+  double a, b;
+  double K[4];  // Kronrod sums of force x, y, moment, sliding area
+  double E[3];  // error bounds of the first three
+  bool gap;     // a located change of structure: bounded, never refined
   double priority() const { return gap ? -1.0 : std::max({ E[0], E[1], E[2] }); }
 };
 
@@ -118,6 +119,7 @@ private:
     double v[4];
     double error;
     std::uint64_t signature;
+    double margin;
   };
 
   Sample solve(double theta)
@@ -136,6 +138,7 @@ private:
     // a path whose series budget ran out is not resolved: bound it by the integrand's bound
     s.error = J * (r.truncated ? kIntegrandBound : r.error);
     s.signature = r.signature;
+    s.margin = r.onset_margin;
     return s;
   }
 
@@ -160,26 +163,36 @@ private:
   {
     const numerics::GaussKronrod15& rule = numerics::gaussKronrod15();
     const double half = 0.5 * (b - a), mid = 0.5 * (a + b);
-    std::array<Sample, 15> s;
+    std::array<Sample, 16> s;  // the 15 nodes, and a probe between them if their margins ask for one
+    int count = 15;
     for (int i = 0; i < 15; ++i)
       s[i] = solve(mid + half * rule.x[i]);
     bool uniform = true;
     for (int i = 0; i + 1 < 15; ++i)
       uniform = uniform && s[i].signature == s[i + 1].signature;
+    double probe = 0.0;
+    if (uniform && hiddenChange(s, probe))
+    {
+      // a band of other structure between two nodes: confirm it with a path there
+      s[count++] = solve(mid + half * probe);
+      uniform = s[15].signature == s[0].signature;
+    }
     if (!uniform && depth < kMaxMixedDepth)
     {
-      // the changes between neighbouring nodes, each to a gap narrower than delta_
+      // the changes between neighbouring samples, each to a gap narrower than delta_
+      std::array<Sample, 16> sorted = s;
+      std::sort(sorted.begin(), sorted.begin() + count, [](const Sample& x, const Sample& y) { return x.theta < y.theta; });
       std::array<std::pair<Sample, Sample>, kMaxGaps> gaps;
       int ng = 0;
-      for (int i = 0; i + 1 < 15; ++i)
-        if (s[i].signature != s[i + 1].signature)
-          locate(s[i], s[i + 1], gaps.data(), ng);
+      for (int i = 0; i + 1 < count; ++i)
+        if (sorted[i].signature != sorted[i + 1].signature)
+          locate(sorted[i], sorted[i + 1], gaps.data(), ng);
       double from = a;
       for (int k = 0; k < ng; ++k)
       {
         if (gaps[k].first.theta > from)
           add(from, gaps[k].first.theta, depth + 1);
-        Interval g;
+        Interval g{};
         g.a = gaps[k].first.theta;
         g.b = gaps[k].second.theta;
         g.gap = true;
@@ -195,11 +208,11 @@ private:
         add(from, b, depth + 1);
       return;
     }
-    Interval v;
+    Interval v{};
     v.a = a;
     v.b = b;
     double G[3] = {}, path_error = 0.0;
-    for (int i = 0; i < 15; ++i)
+    for (int i = 0; i < 15; ++i)  // the rule's nodes, in its order
     {
       for (int c = 0; c < 4; ++c)
         v.K[c] += half * rule.wk[i] * s[i].v[c];
@@ -214,6 +227,47 @@ private:
         v.E[c] = std::max(v.E[c], 2.0 * (b - a) * kIntegrandBound);
     }
     push(v);
+  }
+
+  // The nodes agree on the structure, and their margins (smooth across paths) all have one sign: does the
+  // margins' interpolant change sign between them? Then returns where it is furthest on the other side.
+  bool hiddenChange(const std::array<Sample, 16>& s, double& probe) const
+  {
+    if (f_.pressure != PressureDistribution::Uniform)
+      return false;
+    const numerics::GaussKronrod15& rule = numerics::gaussKronrod15();
+    static const std::array<double, 15> weights = [] {  // barycentric weights of the nodes
+      const numerics::GaussKronrod15& r = numerics::gaussKronrod15();
+      std::array<double, 15> w;
+      for (int j = 0; j < 15; ++j)
+      {
+        w[j] = 1.0;
+        for (int k = 0; k < 15; ++k)
+          if (k != j)
+            w[j] /= r.x[j] - r.x[k];
+      }
+      return w;
+    }();
+    const bool positive = s[0].margin > 0.0;
+    for (int i = 1; i < 15; ++i)
+      if ((s[i].margin > 0.0) != positive)
+        return false;  // the signatures would have told
+    double best = 0.0;
+    for (int k = 0; k < 64; ++k)
+    {
+      const double x = -1.0 + (k + 0.5) / 32.0;
+      double num = 0.0, den = 0.0;
+      for (int j = 0; j < 15; ++j)
+      {
+        const double t = weights[j] / (x - rule.x[j]);
+        num += t * s[j].margin;
+        den += t;
+      }
+      const double value = (positive ? -1.0 : 1.0) * num / den;
+      if (value > best)
+        best = value, probe = x;
+    }
+    return best > 0.0;
   }
 
   // Bisection on the event structure between two samples that differ, down to delta_.

@@ -84,6 +84,10 @@ struct PathIntegrals
   double utilisation2 = 0.0;     ///< largest (|u| / f)^2 seen: 1 if any bristle slides, else sampled
   double error = 0.0;            ///< bound on the error of the along-path quadrature of the sliding pieces
   std::uint64_t signature = 0;   ///< the event structure: equal signatures, no jump between two paths
+  /// With the uniform pressure, the largest |u|^2 - f^2 the bristle reaches adhering from the leading edge (in
+  /// the stretch where its onset is searched): > 0 where it starts sliding before the trailing edge. Smooth
+  /// across paths, so a sign change between two paths of equal signature shows a band of other structure.
+  double onset_margin = 1.0;
   bool truncated = false;        ///< rates too large for the series budget: the path's tail is not resolved
 
   static constexpr int kMaxPieces = 16;
