@@ -212,7 +212,6 @@ public:
 
   PathIntegrals run()
   {
-    buildSegments();
     findG();
     // Leading edge: undeformed (eq. 8). It adheres if the bound grows faster than the drive there (in G), and
     // always with the Hertzian pressure (df/dtau is infinite at the edge) or the uniform one (f = 1 there).
@@ -275,11 +274,32 @@ private:
   }
 
   // G: where a sliding bristle re-adheres, H >= 0 in the front half (tau <= L/2, where df/dtau >= 0).
+  // With the parabolic pressure G needs |w| <= |d(r^2)/dtau| = 2|x| <= 2, and |w| = |phi| |z - z_pole| (|sigma|
+  // without spin): a path that stays further from the pole than 2 / |phi| crosses no G.
+  bool clearOfG() const
+  {
+    if (f_.pressure != PressureDistribution::Parabolic)
+      return f_.pressure == PressureDistribution::Uniform;
+    if (f_.phi == 0.0)
+      return std::norm(f_.sigma) > 4.0;
+    const cd zp = f_.pole();
+    double distance;
+    if (f_.omega == 0.0)
+      distance = std::abs(zp.imag() - p_.entry.imag());
+    else
+    {
+      const cd centre(0.0, f_.tiltingCentre());
+      distance = std::abs(std::abs(zp - centre) - std::abs(p_.entry - centre));
+    }
+    return std::abs(f_.phi) * distance > 2.0 * (1.0 + 1e-9);
+  }
+
   void findG()
   {
     ng_ = 0;
-    if (f_.pressure == PressureDistribution::Uniform)
+    if (clearOfG())
       return;
+    buildSegments();
     const double half = 0.5 * p_.length;
     bool inside = numerics::evaluatePolynomial(seg_[0].H, seg_[0].n, -seg_[0].tm) >= 0.0;
     double start = 0.0;
@@ -332,6 +352,8 @@ private:
   // returns the deflection there.
   cd adhere(double tau_s, cd u_s, double& end)
   {
+    if (ns_ == 0)
+      buildSegments();
     if (keep_ && out_.pieces < PathIntegrals::kMaxPieces)
       out_.piece[out_.pieces++] = { tau_s, p_.length, true, u_s };
     cd U[kSize];
