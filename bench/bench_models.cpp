@@ -1,10 +1,15 @@
 // Time per evaluation of every model and resolution (Google Benchmark). Accuracy is measured separately
 // (bench/model_accuracy.cpp); scripts/benchmark.sh joins the two into docs/benchmarks.md.
 
+// STL
+#include <cmath>
+#include <string>
+
 // Google Benchmark
 #include <benchmark/benchmark.h>
 
 // Package
+#include "brush_marching.h"
 #include "sphere_contact_estimator/core/brush_linear.h"
 #include "sphere_contact_estimator/core/brush_steady.h"
 #include "sphere_contact_estimator/core/brush_transient.h"
@@ -43,13 +48,44 @@ void BM_BrushLinear(benchmark::State& state)
 }
 BENCHMARK(BM_BrushLinear);
 
-void BM_BrushSteady(benchmark::State& state)
+// The steady model at each point of the paper's Fig. 4 curves (sigma_x from -1 to 1 in steps of 0.1, sigma_y in
+// {0, 0.05, 0.1, 0.2}, phi = 3.33 1/m, chi_gamma = 0.9), without and with tilt, at three targets: one benchmark
+// per point, so that the report takes the median over the set.
+void BM_BrushSteadyFigure4(benchmark::State& state, double target, bool tilt, double sigma_x, double sigma_y)
 {
-  sce::BrushSteady model(figure4(static_cast<int>(state.range(0)), state.range(1) != 0));
+  sce::BrushParameters p = figure4(16, tilt);
+  p.accuracy_target = target;
+  const sce::BrushSteady model(p);
   for (auto _ : state)
-    benchmark::DoNotOptimize(model.update(kKinematics, 0.0));
+    benchmark::DoNotOptimize(model.evaluate({ sigma_x, sigma_y }, 3.33, 0.9 * 3.33, 0.1 * 3.33));
 }
-BENCHMARK(BM_BrushSteady)->ArgsProduct({ { 4, 8, 12, 16, 24, 32, 48, 64 }, { 0, 1 } })->ArgNames({ "resolution", "tilt" });
+
+// The package's first steady solver (marching with a cap per cell, test/support) over the same set: its cost
+// does not depend on the point, so one benchmark cycles through the set.
+void BM_BrushMarchingFigure4(benchmark::State& state)
+{
+  const sce::test::BrushMarching model(figure4(static_cast<int>(state.range(0)), state.range(1) != 0));
+  const double sigma_ys[] = { 0.0, 0.05, 0.1, 0.2 };
+  std::size_t i = 0;
+  for (auto _ : state)
+  {
+    const double sigma_x = -1.0 + 0.1 * static_cast<double>(i % 21), sigma_y = sigma_ys[(i / 21) % 4];
+    benchmark::DoNotOptimize(model.evaluate({ sigma_x, sigma_y }, 3.33, 0.9 * 3.33, 0.1 * 3.33));
+    ++i;
+  }
+}
+BENCHMARK(BM_BrushMarchingFigure4)->ArgsProduct({ { 4, 8, 12, 16, 24, 32, 48, 64, 96, 128 }, { 0, 1 } })->ArgNames({ "resolution", "tilt" });
+
+// The old operating points' hardest one, spin against slip (sigma = (0, -0.05), phi = 10 1/m), at each target.
+void BM_BrushSteadySpinAgainstSlip(benchmark::State& state)
+{
+  sce::BrushParameters p = figure4(16, false);
+  p.accuracy_target = std::pow(10.0, -static_cast<double>(state.range(0)));
+  const sce::BrushSteady model(p);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(model.evaluate({ 0.0, -0.05 }, 10.0, 0.0, 0.0));
+}
+BENCHMARK(BM_BrushSteadySpinAgainstSlip)->DenseRange(2, 4)->ArgName("target_exponent");
 
 // One odometry step of 1 ms at 1 m/s (a 1 kHz driver), in steady rolling.
 void BM_BrushTransientStep(benchmark::State& state)
@@ -110,7 +146,24 @@ void BM_EstimatorUpdate(benchmark::State& state)
     benchmark::DoNotOptimize(e.update(in));
   }
 }
-BENCHMARK(BM_EstimatorUpdate)->Arg(1)->Arg(2)->Arg(3)->ArgName("brush_model");
+BENCHMARK(BM_EstimatorUpdate)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->ArgName("brush_model");
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv)
+{
+  for (double target : { 1e-2, 1e-3, 1e-4 })
+    for (int tilt = 0; tilt < 2; ++tilt)
+      for (double sigma_y : { 0.0, 0.05, 0.1, 0.2 })
+        for (int i = 0; i <= 20; ++i)
+        {
+          const double sigma_x = -1.0 + 0.1 * i;
+          char name[128];
+          std::snprintf(name, sizeof(name), "BM_BrushSteadyFigure4/target:%g/tilt:%d/sigma_y:%g/sigma_x:%.1f", target, tilt,
+                        sigma_y, sigma_x);
+          benchmark::RegisterBenchmark(name, BM_BrushSteadyFigure4, target, tilt != 0, sigma_x, sigma_y)->MinTime(0.02);
+        }
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

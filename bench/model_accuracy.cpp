@@ -1,17 +1,31 @@
-// Accuracy of every model and resolution on a fixed set of operating points, against a converged
-// reference: the steady scheme at resolution 512 for the brush (itself held to the closed forms eqs. 23/51
-// by test_brush), the exact solution of eq. 18 for the cylinder. Prints JSON for scripts/benchmark_report.py.
+// Accuracy of every model against converged references, printed as JSON for scripts/benchmark_report.py.
 //
-// Brush errors are max(|dF_x|, |dF_y|, |dM_z| / a) / (mu F_z) on the paper's Fig. 4 set; cylinder errors
-// are |d mu_roll| / mu_roll on the paper's rubber (g = 10).
+// Brush: errors are max(|dF_x|, |dF_y|, |dM_z| / a) / (mu F_z).
+//  - random: a seeded random set of operating points over the envelope a user reaches (a = 0.01-0.08 m,
+//    F_z = 20-5000 N, mu = 0.2-1.2, k = 10^6.5-10^9 N/m^3, |sigma_x| <= 0.3, |sigma_y| <= 0.1, |a phi| <= 1,
+//    tilt ratios -0.5..1.5; the three pressures, tilt and no tilt; slips and spins scaled by 10^-3..1): the steady
+//    model at targets 1e-2, 1e-3, 1e-4 against itself at 1e-9 (whose own agreement with the independent
+//    brute-force marcher of test/support is measured on a subset), the error estimate against the error, the
+//    linear model's bound, and auto at its targets with the inputs held (a robot rolling at 1 m/s, 100 Hz).
+//  - figure4: the paper's Fig. 4 curves (sigma_x in [-1, 1], sigma_y in {0, 0.05, 0.1, 0.2}, phi = 3.33 1/m,
+//    chi_gamma = 0.9, tilt and no tilt): the old marching scheme by resolution.
+//  - transient: the transient model run to steady state, by resolution, at the example point and at
+//    Fig. 4 points, with its own estimate.
+// Cylinder: |d mu_roll| / mu_roll on the paper's rubber (g = 10) against the exact solution of eq. 18.
 
 // STL
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <string>
 #include <vector>
 
 // Package
+#include "brush_brute_force.h"
+#include "brush_marching.h"
+#include "sphere_contact_estimator/core/brush_auto.h"
 #include "sphere_contact_estimator/core/brush_linear.h"
 #include "sphere_contact_estimator/core/brush_steady.h"
 #include "sphere_contact_estimator/core/brush_transient.h"
@@ -25,100 +39,257 @@ namespace
 {
 struct Point
 {
-  const char* name;
-  double sigma_x, sigma_y, phi;
-  bool tilt;
-};
-
-// The documented operating points (docs/benchmarks.md): adhesion, partial and full sliding, spin, tilt.
-const std::vector<Point> kPoints{
-  { "adhesion", 0.002, 0.001, 0.1, false },        { "partial sliding", 0.05, 0.02, 0.0, false },
-  { "full sliding", 0.5, 0.2, 0.0, false },         { "spin", 0.0, 0.0, 3.33, false },
-  { "slip and spin", 0.05, 0.02, 3.33, false },     { "slip, spin, tilt", 0.05, 0.02, 3.33, true },
-  { "spin against slip", 0.0, -0.05, 10.0, false },
-};
-constexpr double kChi = 0.9;  // tilt ratio of the tilt point, as in Fig. 4
-
-sce::BrushParameters params(int resolution, bool tilt)
-{
   sce::BrushParameters p;
-  p.resolution = resolution;
-  p.tilt = tilt;
-  return p;
-}
+  Eigen::Vector2d sigma;
+  double phi = 0.0, chi = 1.0;
+  double pg() const { return chi * phi; }
+  double pp() const { return phi - chi * phi; }
+};
 
 double distance(const sce::BrushForces& f, const sce::BrushForces& g, const sce::BrushParameters& p)
 {
   return std::max({ std::abs(f.F_x - g.F_x), std::abs(f.F_y - g.F_y), std::abs(f.M_z - g.M_z) / p.a }) / (p.mu * p.F_z);
 }
 
-sce::BrushForces steady(const Point& q, int resolution)
+std::vector<Point> randomPoints(int n, unsigned seed)
 {
-  return sce::BrushSteady(params(resolution, q.tilt)).evaluate({ q.sigma_x, q.sigma_y }, q.phi, kChi * q.phi, (1 - kChi) * q.phi);
-}
-
-// transient from undeformed, 4a at constant slips (steady by then), at rolling speed V
-sce::BrushForces transient(const Point& q, int resolution, double V)
-{
-  sce::BrushTransient m(params(resolution, q.tilt));
-  return m.update(sce::ContactKinematics::fromSlips({ q.sigma_x, q.sigma_y }, q.phi, kChi, V), 4.0 * m.parameters().a / V);
-}
-
-void brushRow(const char* model, int resolution, bool tilt_capable, const std::vector<double>& errors, bool& first)
-{
-  std::printf("%s    {\"model\": \"%s\", \"resolution\": %d, \"tilt\": %s, \"errors\": {", first ? "" : ",\n", model,
-              resolution, tilt_capable ? "true" : "false");
-  double worst = 0.0;
-  for (std::size_t i = 0; i < kPoints.size(); ++i)
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Point> out;
+  for (int i = 0; i < n; ++i)
   {
-    std::printf("%s\"%s\": %.6g", i ? ", " : "", kPoints[i].name, errors[i]);
-    worst = std::max(worst, errors[i]);
+    Point q;
+    q.p.a = 0.01 + 0.07 * u(rng);
+    q.p.F_z = std::exp(std::log(20.0) + std::log(250.0) * u(rng));
+    q.p.mu = 0.2 + u(rng);
+    q.p.k = std::pow(10.0, 6.5 + 2.5 * u(rng));
+    q.p.pressure = static_cast<sce::PressureDistribution>(i % 3);
+    q.p.tilt = (i / 3) % 2;
+    const double scale = std::pow(10.0, -3.0 * u(rng) * u(rng));  // more weight near the envelope's edge
+    q.sigma = scale * Eigen::Vector2d(0.3 * (2.0 * u(rng) - 1.0), 0.1 * (2.0 * u(rng) - 1.0));
+    q.phi = scale * (2.0 * u(rng) - 1.0) / q.p.a;
+    q.chi = -0.5 + 2.0 * u(rng);
+    if (q.p.tilt && std::abs(q.pg()) * q.p.a > 1.0)
+      q.chi = 0.9;
+    out.push_back(q);
   }
-  std::printf("}, \"max\": %.6g}", worst);
-  first = false;
+  return out;
 }
-}  // namespace
 
-int main()
+std::string describe(const Point& q)
 {
-  std::vector<sce::BrushForces> reference;
-  for (const Point& q : kPoints)
-    reference.push_back(steady(q, 512));
-  const sce::BrushParameters p = params(16, false);
+  char s[512];
+  std::snprintf(s, sizeof(s),
+                "\"pressure\": \"%s\", \"tilt\": %s, \"a\": %.6g, \"F_z\": %.6g, \"mu\": %.4g, \"k\": %.4g, "
+                "\"sigma_x\": %.6g, \"sigma_y\": %.6g, \"phi\": %.6g, \"chi_gamma\": %.4g",
+                sce::toString(q.p.pressure), q.p.tilt ? "true" : "false", q.p.a, q.p.F_z, q.p.mu, q.p.k, q.sigma.x(),
+                q.sigma.y(), q.phi, q.chi);
+  return s;
+}
 
-  std::printf("{\n  \"brush\": [\n");
+void randomSection(int n)
+{
+  const std::vector<Point> points = randomPoints(n, 2026);
+  std::vector<sce::BrushForces> ref;
+  for (const Point& q : points)
+    ref.push_back(sce::BrushSteady(q.p).evaluate(q.sigma, q.phi, q.pg(), q.pp(), 1e-9));
+
+  std::printf("  \"random\": {\n    \"points\": %d,\n    \"steady\": [", n);
   bool first = true;
+  for (double target : { 1e-2, 1e-3, 1e-4 })
   {
-    std::vector<double> e;
-    const sce::BrushLinear linear(p);
-    for (std::size_t i = 0; i < kPoints.size(); ++i)
-      e.push_back(distance(linear.evaluate({ kPoints[i].sigma_x, kPoints[i].sigma_y }, kPoints[i].phi), reference[i], p));
-    brushRow("linear", 0, false, e, first);
+    double worst = 0.0, worst_ratio = 0.0;
+    int below = 0, below_half = 0, over = 0, worst_i = 0;
+    std::vector<double> times;
+    for (int i = 0; i < n; ++i)
+    {
+      const Point& q = points[i];
+      const sce::BrushSteady model(q.p);
+      const auto t0 = std::chrono::steady_clock::now();
+      const sce::BrushForces f = model.evaluate(q.sigma, q.phi, q.pg(), q.pp(), target);
+      times.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
+      const double e = distance(f, ref[i], q.p);
+      if (e > worst)
+        worst = e, worst_i = i;
+      worst_ratio = std::max(worst_ratio, f.error_estimate > 0.0 ? e / f.error_estimate : (e > 0.0 ? INFINITY : 0.0));
+      below += e > f.error_estimate;
+      below_half += e > 2.0 * f.error_estimate;
+      over += e > target;
+    }
+    std::sort(times.begin(), times.end());
+    std::printf("%s\n      {\"target\": %g, \"max_error\": %.3g, \"over_target\": %d, \"estimate_below_error\": %d, "
+                "\"estimate_below_half_error\": %d, \"max_error_over_estimate\": %.3g, \"median_us\": %.3g, "
+                "\"p99_us\": %.3g, \"worst\": {%s}}",
+                first ? "" : ",", target, worst, over, below, below_half, worst_ratio, times[n / 2], times[n * 99 / 100],
+                describe(points[worst_i]).c_str());
+    first = false;
   }
-  for (int n : { 4, 8, 12, 16, 24, 32, 48, 64 })
+  // the reference against the independent brute-force marcher on a subset (8000 paths, 400 steps: its own error
+  // is ~3e-5 of mu F_z where a re-adhering island lies in the patch, far less elsewhere)
+  double bf_worst = 0.0;
+  const int subset = std::min(n, 48);
+  for (int i = 0; i < subset; ++i)
   {
-    std::vector<double> e;
-    for (std::size_t i = 0; i < kPoints.size(); ++i)
-      e.push_back(distance(steady(kPoints[i], n), reference[i], p));
-    brushRow("steady", n, true, e, first);
+    const Point& q = points[i * (n / subset)];
+    bf_worst = std::max(bf_worst, distance(ref[i * (n / subset)],
+                                           sce::test::bruteForceSteady(q.p, q.sigma, q.phi, q.pg(), q.pp(), 8000, 400), q.p));
   }
-  for (int n : { 8, 12, 16, 24, 32, 48 })
+  std::printf("\n    ],\n    \"reference_vs_brute_force\": {\"points\": %d, \"max_difference\": %.3g},\n", subset, bf_worst);
+
+  // the linear model's bound where auto could pick it
+  double lin_ratio = 0.0;
+  int lin_checked = 0, lin_over = 0;
+  for (int i = 0; i < n; ++i)
   {
-    std::vector<double> e;
-    for (std::size_t i = 0; i < kPoints.size(); ++i)
-      e.push_back(distance(transient(kPoints[i], n, 1.0), reference[i], p));
-    brushRow("transient", n, true, e, first);
+    const Point& q = points[i];
+    const double bound = sce::BrushLinear::errorBound(q.p, q.sigma, q.phi, q.pg(), q.pp());
+    if (bound > 0.1 || bound <= 0.0)
+      continue;
+    const double e = distance(sce::BrushLinear(q.p).evaluate(q.sigma, q.phi), ref[i], q.p);
+    ++lin_checked;
+    lin_over += e > bound;
+    lin_ratio = std::max(lin_ratio, e / bound);
   }
-  // low speed: the transient at 1 cm/s reaches the same state (nothing divides by V_r)
+  std::printf("    \"linear_bound\": {\"points\": %d, \"error_over_bound\": %d, \"max_error_over_bound\": %.3g},\n",
+              lin_checked, lin_over, lin_ratio);
+
+  // auto with held inputs
+  std::printf("    \"auto\": [");
+  first = true;
+  for (double target : { 1e-3, 1e-2, 5e-2 })
   {
-    std::vector<double> e;
-    for (std::size_t i = 0; i < kPoints.size(); ++i)
-      e.push_back(distance(transient(kPoints[i], 16, 0.01), reference[i], p));
-    brushRow("transient at 0.01 m/s", 16, true, e, first);
+    double worst = 0.0;
+    int over = 0, short_estimate = 0, worst_i = 0, used[3] = { 0, 0, 0 };
+    for (int i = 0; i < n; ++i)
+    {
+      Point q = points[i];
+      q.p.accuracy_target = target;
+      sce::BrushAuto model(q.p);
+      const sce::ContactKinematics k = sce::ContactKinematics::fromSlips(q.sigma, q.phi, q.chi, 1.0);
+      sce::BrushForces f;
+      for (int step = 0; step < 5; ++step)
+        f = model.update(k, 0.01);
+      const double e = distance(f, ref[i], q.p);
+      if (e > worst)
+        worst = e, worst_i = i;
+      over += e > target;
+      short_estimate += e > f.error_estimate;
+      ++used[static_cast<int>(model.lastModel())];
+    }
+    std::printf("%s\n      {\"target\": %g, \"max_error\": %.3g, \"over_target\": %d, \"estimate_below_error\": %d, "
+                "\"linear\": %d, \"steady\": %d, \"transient\": %d, \"worst\": {%s}}",
+                first ? "" : ",", target, worst, over, short_estimate, used[0], used[1], used[2],
+                describe(points[worst_i]).c_str());
+    first = false;
+  }
+  std::printf("\n    ]\n  },\n");
+}
+
+sce::BrushParameters figure4(bool tilt)
+{
+  sce::BrushParameters p;  // a = 0.05 m, k = 1.023e8, F_z = 3000 N, mu = 1: the paper's Fig. 4
+  p.tilt = tilt;
+  return p;
+}
+
+void figure4Section()
+{
+  // the old marching scheme over the Fig. 4 set, by resolution
+  std::vector<Point> set;
+  for (int tilt = 0; tilt < 2; ++tilt)
+    for (double sy : { 0.0, 0.05, 0.1, 0.2 })
+      for (int i = 0; i <= 20; ++i)
+      {
+        Point q;
+        q.p = figure4(tilt);
+        q.sigma = Eigen::Vector2d(-1.0 + 0.1 * i, sy);
+        q.phi = 3.33;
+        q.chi = 0.9;
+        set.push_back(q);
+      }
+  std::vector<sce::BrushForces> ref;
+  for (const Point& q : set)
+    ref.push_back(sce::BrushSteady(q.p).evaluate(q.sigma, q.phi, q.pg(), q.pp(), 1e-9));
+  std::printf("  \"figure4\": {\"points\": %zu, \"steady\": [", set.size());
+  for (double target : { 1e-2, 1e-3, 1e-4 })
+  {
+    double worst[2] = { 0.0, 0.0 };
+    int below = 0;
+    for (std::size_t i = 0; i < set.size(); ++i)
+    {
+      const sce::BrushForces f = sce::BrushSteady(set[i].p).evaluate(set[i].sigma, set[i].phi, set[i].pg(), set[i].pp(), target);
+      const double e = distance(f, ref[i], set[i].p);
+      worst[set[i].p.tilt] = std::max(worst[set[i].p.tilt], e);
+      below += e > f.error_estimate;
+    }
+    std::printf("%s\n    {\"target\": %g, \"max_error\": %.3g, \"max_error_tilt\": %.3g, \"estimate_below_error\": %d}",
+                target == 1e-2 ? "" : ",", target, worst[0], worst[1], below);
+  }
+  std::printf("\n  ], \"marching\": [");
+  bool first = true;
+  for (int n : { 4, 8, 12, 16, 24, 32, 48, 64, 96, 128 })
+  {
+    double worst[2] = { 0.0, 0.0 };
+    for (std::size_t i = 0; i < set.size(); ++i)
+    {
+      sce::BrushParameters p = set[i].p;
+      p.resolution = n;
+      const sce::BrushForces f = sce::test::BrushMarching(p).evaluate(set[i].sigma, set[i].phi, set[i].pg(), set[i].pp());
+      worst[p.tilt] = std::max(worst[p.tilt], distance(f, ref[i], p));
+    }
+    std::printf("%s\n    {\"resolution\": %d, \"max_error\": %.3g, \"max_error_tilt\": %.3g}", first ? "" : ",", n, worst[0],
+                worst[1]);
+    first = false;
+  }
+  std::printf("\n  ]},\n");
+}
+
+void transientSection()
+{
+  struct Case
+  {
+    const char* name;
+    sce::BrushParameters p;
+    Eigen::Vector2d sigma;
+    double phi, chi;
+  };
+  sce::BrushParameters example;
+  example.a = 0.030132135540406;
+  example.F_z = 721.6240066650845;
+  example.mu = 0.8447950430510605;
+  example.k = 195451215.1840554;
+  const std::vector<Case> cases{ { "example point", example, { -0.009505213968784471, 0.004217246676809281 }, -9.057291504918961, 1.0 },
+                                 { "Fig. 4, (0.05, 0.02)", figure4(false), { 0.05, 0.02 }, 3.33, 0.9 },
+                                 { "Fig. 4, (-0.02, 0.05)", figure4(false), { -0.02, 0.05 }, 3.33, 0.9 },
+                                 { "Fig. 4, (0.2, 0.1)", figure4(false), { 0.2, 0.1 }, 3.33, 0.9 },
+                                 { "Fig. 4, (0.05, 0.02), tilt", figure4(true), { 0.05, 0.02 }, 3.33, 0.9 },
+                                 { "Fig. 4, (0.01, 0), tilt", figure4(true), { 0.01, 0.0 }, 3.33, 0.9 } };
+  std::printf("  \"transient\": [");
+  bool first = true;
+  for (const Case& c : cases)
+  {
+    const sce::BrushForces ref = sce::BrushSteady(c.p).evaluate(c.sigma, c.phi, c.chi * c.phi, (1 - c.chi) * c.phi, 1e-10);
+    std::printf("%s\n    {\"name\": \"%s\", \"runs\": [", first ? "" : ",", c.name);
+    bool first_run = true;
+    for (int n : { 8, 16, 32, 64, 128 })
+    {
+      sce::BrushParameters p = c.p;
+      p.resolution = n;
+      sce::BrushTransient model(p);
+      const sce::BrushForces f = model.update(sce::ContactKinematics::fromSlips(c.sigma, c.phi, c.chi, 1.0), 6.0 * p.a);
+      std::printf("%s{\"resolution\": %d, \"error\": %.3g, \"estimate\": %.3g}", first_run ? "" : ", ", n,
+                  distance(f, ref, p), f.error_estimate);
+      first_run = false;
+    }
+    std::printf("]}");
+    first = false;
   }
   std::printf("\n  ],\n");
+}
 
-  // cylinder: the paper's rubber, below, at and past v*, and past the critical speed
+void cylinderSection()
+{
+  // the paper's rubber, below, at and past v*, and past the critical speed
   sce::CylinderParameters c;
   c.g = 10.0;
   const sce::CylinderExact exact(c);
@@ -144,6 +315,18 @@ int main()
     }
     std::printf("}, \"max\": %.6g}", worst);
   }
-  std::printf("\n  ]\n}\n");
+  std::printf("\n  ]\n");
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  const int n = argc > 1 ? std::atoi(argv[1]) : 1000;
+  std::printf("{\n");
+  randomSection(n);
+  figure4Section();
+  transientSection();
+  cylinderSection();
+  std::printf("}\n");
   return 0;
 }

@@ -207,8 +207,37 @@ TEST(BrushAuto, StandstillTakesTheTransientModel)
 
 TEST(BrushAuto, TheTransientResolutionGrowsUntilItsEstimateMeetsTheTarget)
 {
-  // Spinning in place (no steady state: only the transient model), at a tight target: the lattice doubles
-  // while the model's own estimate misses the target.
+  // Rolling with a lateral slip that changes within a patch length (no steady state holds: only the transient
+  // model), at a tight target: the lattice doubles while the model's own estimate misses the target.
+  BrushParameters p = figure4Parameters();
+  p.resolution = 8;
+  p.accuracy_target = 2e-3;
+  BrushAuto model(p);
+  const double V = 1.0, dt = 0.002;  // 2 mm per step, a = 50 mm
+  BrushForces f;
+  int grew_at = -1;
+  for (int i = 0; i < 400; ++i)
+  {
+    const double s = V * dt * i;
+    const double sigma_y = 0.01 * std::sin(2.0 * M_PI * s / (1.5 * p.a));
+    f = model.update(ContactKinematics::fromSlips({ 0.0, sigma_y }, 0.0, 1.0, V), dt);
+    if (i >= 10)  // once the changes have made a lag
+      ASSERT_EQ(model.lastModel(), BrushModelKind::Transient) << "step " << i;
+    ASSERT_TRUE(f.valid());
+    if (grew_at < 0 && model.transientResolution() > 8)
+      grew_at = i;
+  }
+  EXPECT_GE(grew_at, 0);
+  EXPECT_GT(model.transientResolution(), 8);
+  EXPECT_TRUE(model.transientResolution() == BrushAuto::kMaxTransientResolution || f.error_estimate <= p.accuracy_target)
+      << "resolution " << model.transientResolution() << " estimate " << f.error_estimate;
+}
+
+TEST(BrushAuto, AtStandstillAMissedTargetIsReportedAndTheFinerLatticeWaitsForTheNextEntry)
+{
+  // Spinning in place nothing renews the bristles, so an interpolated finer lattice would keep its
+  // interpolation error: the estimate reports the miss and the resolution grows when rolling re-enters the
+  // transient model (warm start afresh).
   BrushParameters p = figure4Parameters();
   p.resolution = 8;
   p.accuracy_target = 2e-3;
@@ -219,9 +248,17 @@ TEST(BrushAuto, TheTransientResolutionGrowsUntilItsEstimateMeetsTheTarget)
   BrushForces f;
   for (int i = 0; i < 40; ++i)
     f = model.update(spin, 0.05);
+  EXPECT_EQ(model.lastModel(), BrushModelKind::Transient);
+  EXPECT_EQ(model.transientResolution(), 8);
+  EXPECT_GT(f.error_estimate, p.accuracy_target);
+  // rolling off with a spin that changes along the way: the transient model again, now finer
+  const double V = 1.0, dt = 0.002;
+  for (int i = 0; i < 5; ++i)
+  {
+    ContactKinematics k = ContactKinematics::fromSlips({ 0.0, 0.0 }, (1.0 + i) / p.a, 1.0, V);
+    model.update(k, dt);
+  }
   EXPECT_GT(model.transientResolution(), 8);
-  EXPECT_TRUE(model.transientResolution() == BrushAuto::kMaxTransientResolution || f.error_estimate <= p.accuracy_target)
-      << "resolution " << model.transientResolution() << " estimate " << f.error_estimate;
 }
 
 }  // namespace

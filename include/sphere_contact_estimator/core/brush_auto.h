@@ -7,6 +7,7 @@
 #include "sphere_contact_estimator/core/brush_linear.h"
 #include "sphere_contact_estimator/core/brush_steady.h"
 #include "sphere_contact_estimator/core/brush_transient.h"
+#include "sphere_contact_estimator/core/steady_lag.h"
 
 namespace sphere_contact_estimator
 {
@@ -16,14 +17,16 @@ namespace sphere_contact_estimator
 /// - A steady state describes the contact when the slips are defined, |R_gamma| >= a with tilt, and either
 ///   the step rolled at held inputs further than the longest path through the patch (V_r dt >= that length:
 ///   every bristle then entered under these inputs, so the state is exactly the steady one, whatever came
-///   before), or the inputs change slowly: the lag of the steady state behind the true one, estimated as the
-///   change of the linear force over the memory of the patch, |dF/ds| a (its first-order value for adhesion
-///   is 3 pi / 16 a), is below half the target. Otherwise the transient model runs.
+///   before), or the lag of the steady state behind the true one (SteadyLag: the recent changes of the
+///   linear forces, weighted by the share of the patch's memory each has left) is below half the target.
+///   Otherwise the transient model runs. Noisy odometry makes large changes at each message, but a message
+///   interval that rolls most of a patch length leaves little of them: the lag tells when the steady model
+///   is close enough.
 /// - In a steady state: the linear model if its error bound meets the budget left by the lag,
 ///   else the steady model to that budget, which carries its own bound (BrushSteady). The linear bound is
 ///   BrushLinear::errorBound.
 /// - The transient model at its resolution reports its own estimate (BrushTransient); when that exceeds the
-///   target the resolution doubles (up to kMaxTransientResolution) for the next updates.
+///   target the resolution doubles (up to kMaxTransientResolution) from the next entry into the transient model.
 ///
 /// The transient model is left only after the steady conditions have held over one transit (2a travelled),
 /// when its state is the steady one, and entered from a steady state by rolling it to that state at the last
@@ -58,16 +61,17 @@ public:
 private:
   BrushForces steadyFamily(const Slips& s, const Eigen::Vector2d& sigma, double budget, BrushModelKind& model);
   void enterTransient();
-  void setTransientResolution(int resolution);
 
   BrushLinear linear_;
   BrushSteady steady_;
   std::unique_ptr<BrushTransient> transient_;
   int transient_resolution_ = 16;
+  int pending_resolution_ = 0;  // asked for by a missed target, applied at the next entry
   bool in_transient_ = false;
   double steady_distance_ = 0.0;  // travelled while the steady conditions held, in transient mode
-  Eigen::Vector2d previous_force_ = Eigen::Vector2d::Zero();  // linear force of the previous update
-  bool have_previous_ = false;
+  SteadyLag lag_;  // of the steady state behind the true one
+  double last_lag_ = 0.0;     // its last value, a fraction of mu F_z
+  double entry_error_ = 0.0;  // the warm start's deviation from the true state, forgotten as bristles renew
   ContactKinematics last_rolling_;  // the last inputs with V_r above standstill
   bool have_rolling_ = false;
   BrushForces offset_;  // carried difference at the last switch
