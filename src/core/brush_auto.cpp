@@ -83,8 +83,9 @@ BrushForces BrushAuto::steadyFamily(const Slips& s, const Eigen::Vector2d& sigma
 
 void BrushAuto::enterTransient()
 {
-  // Warm start: the bristles in the steady state of the last rolling inputs (2.5 transits), so the
-  // transient model takes over where the steady one was; at the finer resolution asked for last time.
+  // Warm start: the bristles in the steady state of the last rolling inputs before this step (2.5 transits), so
+  // the transient model takes over where the steady one was and then rolls this step under the new inputs; at
+  // the finer resolution asked for last time.
   if (pending_resolution_ > transient_resolution_)
   {
     transient_resolution_ = pending_resolution_;
@@ -99,8 +100,8 @@ void BrushAuto::enterTransient()
   }
   in_transient_ = true;
   steady_distance_ = 0.0;
-  // the warm start is the steady state; the true one lagged it by about the lag that made us enter, and only
-  // renewed bristles forget that
+  // the warm start is the steady state of the last inputs, which the true state lagged by at most the lag then
+  // (the steady family's answer accepted it); only renewed bristles forget that
   entry_error_ = last_lag_;
 }
 
@@ -130,11 +131,8 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
     frame.forcesToPatch(lin);
     lag_.step(Eigen::Vector3d(lin.F_x, lin.F_y, lin.M_z / p_.a), s.V_r * dt);
     lag = limit > 0.0 ? lag_.lag() / limit : 0.0;
-    last_lag_ = lag;
     if (!(lag <= 0.5 * target))
       steady_ok = false;
-    last_rolling_ = kin;
-    have_rolling_ = true;
   }
   else
     lag_.reset();
@@ -148,7 +146,13 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
   else if (in_transient_)
     steady_distance_ = 0.0;
   else if (!steady_ok)
-    enterTransient();
+    enterTransient();  // from the state before this step
+  if (s.defined)
+  {
+    last_rolling_ = kin;
+    have_rolling_ = true;
+    last_lag_ = lag;
+  }
 
   BrushForces out;
   BrushModelKind model;

@@ -33,11 +33,13 @@ namespace sphere_contact_estimator
 /// motion) that lies on the other side of the jump or of the edge. That makes the sum second order where the
 /// lattice rows follow the rolling direction, as in the estimator's contact frame.
 ///
-/// error_estimate: the largest change of the forces (F_x, F_y, M_z / a, a fraction of mu F_z) when the sum
-/// is taken over any of the four sub-lattices of twice the spacing instead; the sum's error falls at least as
-/// fast as the spacing, so the coarser sum is at least as far off. What no lattice row crosses (a re-adhering
-/// streak narrower than the spacing, where a spin pole lies in the front of the patch) no sum sees: the
-/// steady model resolves those exactly.
+/// error_estimate: twice the largest change of the forces (F_x, F_y, M_z / a, a fraction of mu F_z) when the
+/// sum is taken over any of the four sub-lattices of twice the spacing instead; the sum's error falls at least
+/// as fast as the spacing, so the coarser sum is at least as far off, and the factor 2 covers the irregular
+/// part of the error (cells cut by the edge and by the onsets), measured over noisy histories at random
+/// operating points. Re-adhering streaks narrower than three spacings (where a spin pole lies in the front of
+/// the patch), which no lattice row may cross, add their largest possible force (streakBound); the steady
+/// model resolves those exactly.
 ///
 /// update() advances by the caller's dt in substeps that keep each bristle's path within half a lattice
 /// spacing and every rotation below 0.1 rad; at most kMaxSubsteps of them (flagged when that is short).
