@@ -202,15 +202,15 @@ struct Interval
 class PathSolver
 {
 public:
-  PathSolver(const BristleField& f, const BristlePath& p, double tolerance, bool keep)
-    : f_(f), p_(p), tolerance_(tolerance), keep_(keep)
+  PathSolver(const BristleField& f, const BristlePath& p, double tolerance, bool keep, PathIntegrals& out)
+    : f_(f), p_(p), tolerance_(tolerance), keep_(keep), out_(out)
   {
     // the series of up to kMaxSegments segments (about 100 kB): built once per thread, overwritten per path
     thread_local std::array<Segment, kMaxSegments> storage;
     seg_ = storage.data();
   }
 
-  PathIntegrals run()
+  void run()
   {
     findG();
     // Leading edge: undeformed (eq. 8). It adheres if the bound grows faster than the drive there (in G), and
@@ -251,7 +251,6 @@ public:
       }
       adhering = !adhering;
     }
-    return out_;
   }
 
 private:
@@ -289,7 +288,7 @@ private:
     else
     {
       const cd centre(0.0, f_.tiltingCentre());
-      distance = std::abs(std::abs(zp - centre) - std::abs(p_.entry - centre));
+      distance = std::abs(std::sqrt(std::norm(zp - centre)) - std::sqrt(std::norm(p_.entry - centre)));
     }
     return std::abs(f_.phi) * distance > 2.0 * (1.0 + 1e-9);
   }
@@ -503,7 +502,9 @@ private:
       else
       {
         const cd centre(0.0, f_.tiltingCentre());
-        star = std::log((zp - centre) / (p_.entry - centre)) / cd(0.0, f_.omega);  // centre + e^{i omega tau}(z_e - centre)
+        // centre + e^{i omega tau}(z_e - centre) = z_p: the complex log, without the hypot std::log takes
+        const cd ratio = (zp - centre) / (p_.entry - centre);
+        star = cd(std::atan2(ratio.imag(), ratio.real()), -0.5 * std::log(std::norm(ratio))) / f_.omega;
       }
     }
     if (f_.omega == 0.0 && f_.pressure != PressureDistribution::Hertzian)
@@ -674,7 +675,7 @@ private:
   const BristlePath& p_;
   double tolerance_;
   bool keep_;
-  PathIntegrals out_;
+  PathIntegrals& out_;  // the caller's: returned in place (it holds the pieces, most of a kilobyte)
   Segment* seg_ = nullptr;
   int ns_ = 0;
   double rate_ = 0.0;  // the fastest turn along the path, max(|omega|, |kappa|)
@@ -878,9 +879,10 @@ double pathThrough(const BristleField& field, std::complex<double> z)
 
 PathIntegrals solvePath(const BristleField& field, const BristlePath& path, double tolerance, bool keep_pieces)
 {
-  if (!(path.length > 0.0))
-    return {};
-  return PathSolver(field, path, tolerance, keep_pieces).run();
+  PathIntegrals out;  // returned in place
+  if (path.length > 0.0)
+    PathSolver(field, path, tolerance, keep_pieces, out).run();
+  return out;
 }
 
 std::complex<double> deflectionAt(const BristleField& field, const BristlePath& path, const PathIntegrals& solved,

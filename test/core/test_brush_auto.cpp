@@ -222,7 +222,9 @@ TEST(BrushAuto, TheTransientResolutionGrowsUntilItsEstimateMeetsTheTarget)
     const double sigma_y = 0.01 * std::sin(2.0 * M_PI * s / (1.5 * p.a));
     f = model.update(ContactKinematics::fromSlips({ 0.0, sigma_y }, 0.0, 1.0, V), dt);
     if (i >= 10)  // once the changes have made a lag
+    {
       ASSERT_EQ(model.lastModel(), BrushModelKind::Transient) << "step " << i;
+    }
     ASSERT_TRUE(f.valid());
     if (grew_at < 0 && model.transientResolution() > 8)
       grew_at = i;

@@ -27,9 +27,9 @@ struct BrushParameters
   /// turn coupling chi_psi A_phi u of eq. 32 is kept. Off: Sect. 3, straight paths, chi_psi u
   /// neglected as the paper does there.
   bool tilt = false;
-  int resolution = 32;    ///< patch discretisation: paths (steady) or lattice spacings across 2a (transient)
+  int resolution = 32;    ///< transient: lattice spacings across 2a (the steady model follows accuracy_target)
   double standstill_speed = 1.0e-3;  ///< V_r below which the slip form is not used [m/s]
-  double accuracy_target = 0.01;     ///< BrushAuto: largest error allowed, relative to mu F_z
+  double accuracy_target = 0.01;     ///< BrushSteady: its error bound; BrushAuto: largest error; of mu F_z
 
   /// Throws std::invalid_argument naming the first bad value: a, k > 0; F_z, mu >= 0; all finite;
   /// 2 <= resolution <= 1024; standstill_speed > 0; 0 < accuracy_target <= 1.

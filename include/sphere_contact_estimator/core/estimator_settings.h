@@ -44,7 +44,7 @@ struct EstimatorSettings
   double load = 0.0;            ///< F_z [N]; 0: robot_mass * gravity
   double gravity = 9.81;        ///< [m/s^2]
   // brush
-  BrushChoice brush_model = BrushChoice::Steady;
+  BrushChoice brush_model = BrushChoice::Auto;  ///< the default: chosen on the demo bag (README)
   double patch_radius = 0.01;      ///< a [m], unless contact_modulus > 0
   double contact_modulus = 0.0;    ///< E* [Pa]; > 0: a from Hertz with R = rolling_radius
   double bristle_stiffness = 1e9;  ///< k [N/m^3]
@@ -53,8 +53,8 @@ struct EstimatorSettings
   bool tilt = false;               ///< Sect. 4 formulation (eq. 31, 32)
   TiltRatioSource tilt_ratio_source = TiltRatioSource::Estimate;
   double tilt_ratio = 1.0;         ///< chi_gamma for TiltRatioSource::Fixed
-  int resolution = 16;
-  double accuracy_target = 0.01;   ///< brush_model auto: largest error, relative to mu F_z
+  int resolution = 32;             ///< transient: lattice spacings across 2a (auto starts there)
+  double accuracy_target = 0.01;   ///< steady: its error bound; auto: largest error; relative to mu F_z
   double standstill_speed = 1e-3;  ///< V_r below which slips are undefined [m/s]
   double turn_rate_time_constant = 0.05;  ///< low-pass of the psi_dot estimate [s]
   double max_step = 0.5;           ///< a longer gap between messages resets the transient state [s]
