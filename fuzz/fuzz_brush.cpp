@@ -1,4 +1,5 @@
-// Every brush model on any parameters and kinematics: finite, |F_t| <= mu F_z, or a clear rejection.
+// Every brush model on any parameters and kinematics: finite, |F_t| <= mu F_z, an error estimate >= 0, or a clear
+// rejection.
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -17,6 +18,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   p.F_z = std::pow(10.0, in.in(-6.0, 12.0)) * (in.in(0.0, 1.0) < 0.1 ? 0.0 : 1.0);
   p.mu = std::pow(10.0, in.in(-3.0, 3.0));
   p.tilt = in.in(0.0, 1.0) < 0.5;
+  p.pressure = static_cast<PressureDistribution>(static_cast<int>(in.in(0.0, 2.99)));
   p.resolution = 2 + static_cast<int>(in.in(0.0, 10.0));
   p.accuracy_target = in.in(1e-4, 1.0);
   const auto kind = static_cast<BrushModelKind>(static_cast<int>(in.in(0.0, 3.99)));
@@ -40,6 +42,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!(std::isfinite(f.F_x) && std::isfinite(f.F_y) && std::isfinite(f.M_z) && std::isfinite(f.sliding_fraction)))
       std::abort();
     if (std::hypot(f.F_x, f.F_y) > p.mu * p.F_z * (1.0 + 1e-9) + 1e-300)
+      std::abort();
+    if (!(f.error_estimate >= 0.0))  // NaN or negative
       std::abort();
   }
   return 0;

@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# Speed and accuracy of every model: Google Benchmark timings and the accuracy on the documented
-# operating points, joined into docs/benchmarks.md and docs/figures/pareto.png (commit both).
+# Speed and accuracy of every model: Google Benchmark timings, the accuracy program over random operating
+# points, the auto model along the demo bag (before: bench/demo_bag_before.json, measured on the release before
+# issue 11), joined into docs/benchmarks.md and docs/figures/pareto.png (commit both).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 OUT="${SCE_OUTPUT:-$WS/output}"
 install_deps
-build bench_models model_accuracy node_benchmark contact_estimator_node
+build bench_models model_accuracy node_benchmark contact_estimator_node bag_analyze
 mkdir -p "$OUT"
 BIN="$WS/devel/lib/$PKG"
 log "timing (Google Benchmark, 3 repetitions, medians)"
@@ -14,6 +15,9 @@ log "timing (Google Benchmark, 3 repetitions, medians)"
   --benchmark_format=console --benchmark_out_format=json --benchmark_out="$OUT/bench.json" 2>&1 | grep -v WARNING
 log "accuracy on the operating points"
 "$BIN/model_accuracy" > "$OUT/accuracy.json"
+log "auto along the demo bag against the transient model at resolution 256 (about 3 minutes)"
+/usr/bin/python3 "$REPO/scripts/bag_model_accuracy.py" --bag-analyze "$BIN/bag_analyze" --reference-resolution 256 \
+  --before "$REPO/bench/demo_bag_before.json" --out "$OUT/bag.json"
 log "node over roscpp on loopback (the node pinned to one core) and bag replay"
 PORT=$((20000 + RANDOM % 20000))
 export ROS_MASTER_URI="http://localhost:$PORT"
@@ -29,4 +33,5 @@ taskset -c 0 "$BIN/node_benchmark" _duration:=2.0 > "$OUT/node.json"
 kill $NODE $ROSCORE 2>/dev/null || true
 wait 2>/dev/null || true
 /usr/bin/python3 "$REPO/scripts/benchmark_report.py" --bench "$OUT/bench.json" --accuracy "$OUT/accuracy.json" \
-  --node "$OUT/node.json" --docs "$REPO/docs"
+  --node "$OUT/node.json" --bag "$OUT/bag.json" --default-brush-model "$(sed -n 's/^brush_model: *\([0-9]\).*/\1/p' "$REPO/config/contact_estimator.yaml")" \
+  --docs "$REPO/docs"

@@ -156,7 +156,8 @@ def verdict(value, limit, higher_is_better=False):
     if (value >= limit) if higher_is_better else (value <= limit):
         return "met"
     if value > 0 and limit > 0:
-        return "missed by " + fmt_ratio(limit / value if higher_is_better else value / limit)
+        over = limit / value if higher_is_better else value / limit
+        return "missed by %.0f %%" % (100.0 * (over - 1.0)) if over < 1.5 else "missed by " + fmt_ratio(over)
     return "missed"
 
 

@@ -38,7 +38,7 @@ double longestPath(const BrushParameters& p)
 }  // namespace
 
 BrushAuto::BrushAuto(const BrushParameters& parameters)
-  : BrushModel(parameters), linear_(parameters), steady_(parameters), lag_(parameters.a)
+  : BrushModel(parameters), linear_(parameters), steady_(parameters), lag_(2.0 * parameters.a)
 {
   transient_resolution_ = std::min(p_.resolution, kMaxTransientResolution);
   transient_ = std::make_unique<BrushTransient>(withResolution(p_, transient_resolution_));
@@ -47,6 +47,8 @@ BrushAuto::BrushAuto(const BrushParameters& parameters)
 void BrushAuto::rotateFrame(double alpha)
 {
   transient_->rotateFrame(alpha);
+  if (finer_)
+    finer_->rotateFrame(alpha);
   // a force, physical, in the turned axes (x' = R(-alpha) x)
   const double c = std::cos(alpha), s = std::sin(alpha);
   lag_.rotate(alpha);
@@ -58,6 +60,7 @@ void BrushAuto::rotateFrame(double alpha)
 void BrushAuto::reset()
 {
   transient_->reset();
+  finer_.reset();
   in_transient_ = false;
   steady_distance_ = 0.0;
   lag_.reset();
@@ -66,15 +69,71 @@ void BrushAuto::reset()
   answered_ = false;
 }
 
+void BrushAuto::stepLag(const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame, double target,
+                        bool steady_exists, double travel)
+{
+  // The linear forces where they are within a quarter of the target of the steady ones, split into what the
+  // slips and what the spin drive (SteadyLag weighs each by its own memory; for adhesion the lag is then
+  // exact); else the steady model to a quarter of the target, kept for the answer. The lag needs the forces
+  // that actually change: the linear force clipped at mu F_z, or any simple saturation law, missed a robot
+  // accelerating out of a spinning skid (the force fell by a tenth of mu F_z per message while the clipped one
+  // stood still), measured over random histories.
+  steady_cached_ = false;
+  const auto toPatch = [&](double F_x, double F_y, double M_z) {
+    BrushForces f;
+    f.F_x = F_x;
+    f.F_y = F_y;
+    frame.forcesToPatch(f);
+    return Eigen::Vector3d(f.F_x, f.F_y, M_z / p_.a);
+  };
+  Eigen::Vector3d slip, spin = Eigen::Vector3d::Zero();
+  bool split = false;
+  const double limit = p_.mu * p_.F_z;
+  // which drive made the change since the last step, in the linear theory's forces
+  const Eigen::Vector2d d_sigma = sigma - last_lag_sigma_;
+  const double d_slip = linear_.C_sigma() * d_sigma.norm(), d_spin = linear_.C_phi() * std::abs(s.phi - last_lag_phi_);
+  const double spin_share = d_slip + d_spin > 0.0 ? d_spin / (d_slip + d_spin) : 1.0;
+  last_lag_sigma_ = sigma;
+  last_lag_phi_ = s.phi;
+  if (!steady_exists || linear_bound_ <= 0.25 * target)
+  {
+    // eqs. 61-62 by drive, scaled back together onto the friction circle like BrushLinear (then not split)
+    const Eigen::Vector2d F_slip = linear_.C_sigma() * sigma;
+    const double F_spin = linear_.C_phi() * s.phi;
+    const double M_slip = -linear_.C_Msigma_y() * sigma.y(), M_spin = linear_.C_Mphi() * s.phi;
+    const double norm = std::hypot(F_slip.x(), F_slip.y() + F_spin);
+    const double scale = norm > limit && norm > 0.0 ? limit / norm : 1.0;
+    slip = scale * toPatch(F_slip.x(), F_slip.y(), M_slip);
+    spin = scale * toPatch(0.0, F_spin, M_spin);
+    split = scale == 1.0;
+  }
+  else
+  {
+    BrushSteady::Stats stats;
+    steady_cache_ = steady_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi, 0.25 * target, &stats);
+    cost_ += kSteadyPathCost * stats.paths;
+    steady_cached_ = true;
+    slip = toPatch(steady_cache_.F_x, steady_cache_.F_y, steady_cache_.M_z);
+  }
+  lag_.step(slip, spin, split, spin_share, travel, linear_bound_);
+}
+
 BrushForces BrushAuto::steadyFamily(const Slips& s, const Eigen::Vector2d& sigma, double budget, BrushModelKind& model)
 {
-  if (BrushLinear::errorBound(p_, sigma, s.phi, s.phi_gamma, s.phi_psi) <= budget)
+  // the linear model's bound at the largest inputs the patch still remembers: a lagging state carries the
+  // sliding of its past inputs (on random ramps the bound at the current inputs fell short by 1.4x)
+  const double bound = std::max(linear_bound_, lag_.largestHeld());
+  if (bound <= budget)
   {
     model = BrushModelKind::Linear;
     cost_ += kLinearCost;
-    return linear_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi);
+    BrushForces f = linear_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi);
+    f.error_estimate = std::max(f.error_estimate, bound);
+    return f;
   }
   model = BrushModelKind::Steady;
+  if (steady_cached_ && steady_cache_.error_estimate <= budget)
+    return steady_cache_;  // evaluated for the lag, to a quarter of the target
   BrushSteady::Stats stats;
   const BrushForces f = steady_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi, budget, &stats);
   cost_ += kSteadyPathCost * stats.paths;
@@ -114,6 +173,7 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
   const int before_resolution = last_resolution_;
 
   // Conditions under which a steady state describes the contact, and the lag of that state.
+  steady_cached_ = false;
   bool steady_ok = s.defined;
   bool renewed = false;  // every bristle entered under these inputs: the state is exactly the steady one
   double lag = 0.0;
@@ -125,11 +185,16 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
     if (p_.tilt && std::abs(s.phi_gamma) * p_.a > 1.0)
       steady_ok = false;  // |R_gamma| < a: no steady state on an inner disc
     renewed = s.V_r * dt >= longestPath(p_);
-    // the lag of the steady state behind the true one, from the changes of the (saturated) linear forces
+    // the lag of the steady state behind the true one, from the changes of the steady forces
     const double limit = p_.mu * p_.F_z;
-    BrushForces lin = linear_.evaluate(sigma, s.phi);
-    frame.forcesToPatch(lin);
-    lag_.step(Eigen::Vector3d(lin.F_x, lin.F_y, lin.M_z / p_.a), s.V_r * dt);
+    linear_bound_ = BrushLinear::errorBound(p_, sigma, s.phi, s.phi_gamma, s.phi_psi);
+    // with tilt the paths are arcs about the tilting centre, longer than their chords: the central one by
+    // (|R_gamma| / a) asin(a / |R_gamma|), up to pi / 2; the patch renews that much more slowly
+    double stretch = 1.0;
+    const double a_phi_gamma = std::abs(s.phi_gamma) * p_.a;
+    if (p_.tilt && a_phi_gamma > 0.0)
+      stretch = a_phi_gamma < 1.0 ? std::asin(a_phi_gamma) / a_phi_gamma : 0.5 * boost::math::double_constants::pi;
+    stepLag(s, sigma, frame, target, steady_ok, s.V_r * dt / stretch);
     lag = limit > 0.0 ? lag_.lag() / limit : 0.0;
     if (!(lag <= 0.5 * target))
       steady_ok = false;
@@ -141,7 +206,10 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
   {
     steady_distance_ += s.V_r * dt;
     if (renewed || steady_distance_ >= longestPath(p_))
+    {
       in_transient_ = false;  // its state is the steady one now
+      finer_.reset();
+    }
   }
   else if (in_transient_)
     steady_distance_ = 0.0;
@@ -160,25 +228,47 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
   if (in_transient_)
   {
     out = transient_->update(kin, dt);
-    entry_error_ *= lag_.memory(s.V_r * dt);
+    entry_error_ *= lag_.memory(s.V_r * dt / (0.5 * longestPath(p_) / p_.a));  // the slowest renewal
     out.error_estimate += entry_error_;
     model = BrushModelKind::Transient;
     resolution = transient_resolution_;
     cost_ += transientStepCost(resolution) * std::max(1.0, std::ceil(s.V_r * dt / (p_.a / resolution)));
-    // A missed target asks for twice the resolution. Rolling, the bristle state is interpolated onto the finer
-    // lattice at once (a rare event: it allocates), and the interpolation's error leaves the patch with the
-    // bristles within a transit. At standstill nothing renews the state, so the interpolation's error would stay
-    // (measured on the demo bag): the finer lattice waits for the next entry into the transient model, whose
-    // warm start builds the state afresh, and the estimate meanwhile says that the target is missed.
-    if (out.error_estimate > target && transient_resolution_ < kMaxTransientResolution)
+    // A missed target asks for twice the resolution. Rolling, a finer lattice starts beside this one (warm, in
+    // the steady state of these inputs) and takes over once it has rolled the longest path: then every bristle
+    // on it entered under inputs it followed, so it holds nothing of its start. Interpolating the state onto the
+    // finer lattice instead was wrong near a spin pole, where the sliding direction turns within a spacing, by
+    // 7 % of mu F_z a transit later on random histories. At standstill nothing renews a state: the finer lattice
+    // waits for the next entry into the transient model, and the estimate meanwhile says that the target is
+    // missed.
+    if (finer_)
+    {
+      finer_->update(kin, dt);
+      cost_ += transientStepCost(2 * resolution) * std::max(1.0, std::ceil(s.V_r * dt / (p_.a / (2 * resolution))));
+      finer_travel_ += s.V_r * dt;
+      if (finer_travel_ >= longestPath(p_))
+      {
+        // continuity: the coarse answer's difference from the finer one is carried and decays like any switch
+        const BrushForces fine = finer_->forces();
+        offset_.F_x += out.F_x - fine.F_x;
+        offset_.F_y += out.F_y - fine.F_y;
+        offset_.M_z += out.M_z - fine.M_z;
+        const double entry = entry_error_;
+        out = fine;
+        out.error_estimate += entry;
+        transient_ = std::move(finer_);
+        transient_resolution_ = resolution = 2 * resolution;
+      }
+    }
+    else if ((out.error_estimate > target || pending_resolution_ > transient_resolution_) &&
+             transient_resolution_ < kMaxTransientResolution)
     {
       const int finer = std::min(2 * transient_resolution_, kMaxTransientResolution);
       if (s.defined)
       {
-        auto next = std::make_unique<BrushTransient>(withResolution(p_, finer));
-        next->resampleFrom(*transient_);
-        transient_ = std::move(next);
-        transient_resolution_ = finer;
+        finer_ = std::make_unique<BrushTransient>(withResolution(p_, finer));  // rare: it allocates
+        finer_->update(kin, 2.5 * longestPath(p_) / s.V_r);
+        cost_ += transientStepCost(finer) * std::ceil(5.0 * finer);
+        finer_travel_ = 0.0;
       }
       else
         pending_resolution_ = finer;

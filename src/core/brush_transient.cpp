@@ -98,55 +98,6 @@ void BrushTransient::allocate()
   reset();
 }
 
-void BrushTransient::resampleFrom(const BrushTransient& other)
-{
-  reset();
-  R_ = other.R_;
-  o_ = other.o_;
-  V_r_ = other.V_r_;
-  omega_gamma_ = other.omega_gamma_;
-  const double a2 = p_.a * p_.a;
-  for (int j = 0; j < w_; ++j)
-    for (int i = 0; i < w_; ++i)
-    {
-      const std::size_t p = index(i, j);
-      const Eigen::Vector2d x = position(i, j);
-      inside_[p] = x.squaredNorm() < a2;
-      if (!inside_[p])
-        continue;
-      // the other lattice's coordinates of x, and its four bristles around it
-      const Eigen::Vector2d l = other.R_.transpose() * (x - other.o_) / other.h_ + Eigen::Vector2d(other.c0_, other.c0_);
-      const int i0 = static_cast<int>(std::floor(l.x())), j0 = static_cast<int>(std::floor(l.y()));
-      const double fx = l.x() - i0, fy = l.y() - j0;
-      Eigen::Vector2d u = Eigen::Vector2d::Zero();
-      double weight = 0.0, nearest = INFINITY;
-      for (int dj = 0; dj <= 1; ++dj)
-        for (int di = 0; di <= 1; ++di)
-        {
-          const int oi = i0 + di, oj = j0 + dj;
-          if (oi < 0 || oj < 0 || oi >= other.w_ || oj >= other.w_)
-            continue;
-          const std::size_t q = other.index(oi, oj);
-          if (!other.inside_[q])
-            continue;
-          const double w = (di ? fx : 1.0 - fx) * (dj ? fy : 1.0 - fy);
-          u += w * other.u_[q];
-          weight += w;
-          const double d = (di - fx) * (di - fx) + (dj - fy) * (dj - fy);
-          if (d < nearest)
-          {
-            nearest = d;
-            sliding_[p] = other.sliding_[q];
-            slip_travel_[p] = other.slip_travel_[q];
-            jump_[p] = other.jump_[q];
-          }
-        }
-      u_[p] = weight > 0.0 ? Eigen::Vector2d(u / weight) : Eigen::Vector2d::Zero();
-    }
-  streak_estimate_ = other.streak_estimate_;
-  recentre();
-}
-
 void BrushTransient::reset()
 {
   R_.setIdentity();

@@ -7,6 +7,7 @@
 #include "sphere_contact_estimator/core/brush_linear.h"
 #include "sphere_contact_estimator/core/brush_steady.h"
 #include "sphere_contact_estimator/core/brush_transient.h"
+#include "sphere_contact_estimator/core/rolling_frame.h"
 #include "sphere_contact_estimator/core/steady_lag.h"
 
 namespace sphere_contact_estimator
@@ -26,7 +27,9 @@ namespace sphere_contact_estimator
 ///   else the steady model to that budget, which carries its own bound (BrushSteady). The linear bound is
 ///   BrushLinear::errorBound.
 /// - The transient model at its resolution reports its own estimate (BrushTransient); when that exceeds the
-///   target the resolution doubles (up to kMaxTransientResolution) from the next entry into the transient model.
+///   target the resolution doubles (up to kMaxTransientResolution): rolling, a lattice of twice the resolution
+///   runs beside it and takes over after the longest path (when it holds nothing of its start); at standstill,
+///   from the next entry into the transient model.
 ///
 /// The transient model is left only after the steady conditions have held over one transit (2a travelled),
 /// when its state is the steady one, and entered from a steady state by rolling it to that state at the last
@@ -60,16 +63,25 @@ public:
 
 private:
   BrushForces steadyFamily(const Slips& s, const Eigen::Vector2d& sigma, double budget, BrushModelKind& model);
+  void stepLag(const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame, double target,
+               bool steady_exists, double travel);
   void enterTransient();
 
   BrushLinear linear_;
   BrushSteady steady_;
   std::unique_ptr<BrushTransient> transient_;
+  std::unique_ptr<BrushTransient> finer_;  // twice the resolution, rolling beside transient_ until it takes over
+  double finer_travel_ = 0.0;
   int transient_resolution_ = 16;
   int pending_resolution_ = 0;  // asked for by a missed target, applied at the next entry
   bool in_transient_ = false;
   double steady_distance_ = 0.0;  // travelled while the steady conditions held, in transient mode
   SteadyLag lag_;  // of the steady state behind the true one
+  BrushForces steady_cache_;    // the steady model at this update's inputs, if stepLag evaluated it
+  bool steady_cached_ = false;
+  double linear_bound_ = 0.0;   // BrushLinear::errorBound at this update's inputs
+  Eigen::Vector2d last_lag_sigma_ = Eigen::Vector2d::Zero();  // the slips and spin of the last lag step
+  double last_lag_phi_ = 0.0;
   double last_lag_ = 0.0;     // its last value, a fraction of mu F_z
   double entry_error_ = 0.0;  // the warm start's deviation from the true state, forgotten as bristles renew
   ContactKinematics last_rolling_;  // the last inputs with V_r above standstill

@@ -65,11 +65,6 @@ public:
   /// next substep applies the new bound. Returns true when the state had to be reset.
   bool setParameters(const BrushParameters& parameters);
 
-  /// Takes over another model's bristle state (same patch radius, any resolution): the lattice keeps its pose,
-  /// deflections are interpolated bilinearly from the other lattice's bristles, the rest taken from the nearest.
-  /// For changing the resolution in the middle of a transient without losing its history.
-  void resampleFrom(const BrushTransient& other);
-
   /// Visits every bristle inside the patch: f(position x [m], deflection u [m], sliding).
   template <class F>
   void forEachBristle(F&& f) const
