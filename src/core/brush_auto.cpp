@@ -121,7 +121,7 @@ void BrushAuto::stepLag(const Slips& s, const Eigen::Vector2d& sigma, const Roll
 BrushForces BrushAuto::steadyFamily(const Slips& s, const Eigen::Vector2d& sigma, double budget, BrushModelKind& model)
 {
   // the linear model's bound at the largest inputs the patch still remembers: a lagging state carries the
-  // sliding of its past inputs (on random ramps the bound at the current inputs fell short by 1.4x)
+  // sliding of its past inputs, which the bound at the current ones may understate
   const double bound = std::max(linear_bound_, lag_.largestHeld());
   if (bound <= budget)
   {
