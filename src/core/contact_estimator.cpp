@@ -154,8 +154,8 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
       reset();
       o.flags |= estimate_flags::kTimeJumpReset;
     }
-    else if (gap == 0.0)
-      o.flags |= estimate_flags::kDuplicateStamp;
+    else if (gap < kMinStep)
+      o.flags |= estimate_flags::kDuplicateStamp;  // nothing advances (a rate over 1e-315 s overflowed)
     else if (gap > settings_.max_step)
     {
       if (brush_)
@@ -168,8 +168,9 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
       dt = gap;
   }
   const bool first = !have_last_;
+  if (!(o.flags & estimate_flags::kDuplicateStamp))  // sub-nanosecond steps add up to one that counts
+    last_stamp_ = in.stamp;
   have_last_ = true;
-  last_stamp_ = in.stamp;
   o.dt = dt;
 
   // Contact frame: x along V_r, held at standstill; psi_dot from its heading.

@@ -191,12 +191,36 @@ TEST(ContactEstimator, TimeHandling)
   EXPECT_TRUE(d->flags & estimate_flags::kDuplicateStamp);
   EXPECT_EQ(d->dt, 0.0);
   EXPECT_DOUBLE_EQ(d->brush.F_x, built_up);
+  d = e.update(rolling(10.01 + 1e-12, 1.0, 0.0, 0.05, 0.0, 0.0));  // below a stamp's resolution
+  EXPECT_TRUE(d->flags & estimate_flags::kDuplicateStamp);
+  EXPECT_DOUBLE_EQ(d->brush.F_x, built_up);
   d = e.update(rolling(5.0, 1.0, 0.0, 0.05, 0.0, 0.0));  // a looping bag
   EXPECT_TRUE(d->flags & estimate_flags::kTimeJumpReset);
   EXPECT_EQ(d->brush.F_x, 0.0);  // fresh bristles
   d = e.update(rolling(6.0, 1.0, 0.0, 0.05, 0.0, 0.0));  // a gap
   EXPECT_TRUE(d->flags & estimate_flags::kGapReset);
   EXPECT_EQ(d->dt, 0.0);
+}
+
+// Found by fuzz_estimator: a turn over a denormal step (5.9e-315 s) made the turn rate infinite.
+TEST(ContactEstimator, TurnOverADenormalStepIsADuplicate)
+{
+  EstimatorSettings s = settings(BrushChoice::Transient);
+  s.tilt = true;
+  ContactEstimator e(s);
+  EstimatorInput in;
+  in.stamp = 0.0;
+  in.omega = Eigen::Vector3d(0.0, 15.0, 0.5);
+  in.v_contact = Eigen::Vector3d(1.52, 0.02, 0.0);
+  ASSERT_TRUE(e.update(in));
+  in.stamp = 5.9415882152956413e-315;
+  in.omega = Eigen::Vector3d(0.01, 0.02, 0.0);
+  in.v_contact = Eigen::Vector3d(0.02, 0.0, 0.0);
+  const ContactEstimateData* d = e.update(in);
+  ASSERT_TRUE(d);
+  EXPECT_TRUE(d->flags & estimate_flags::kDuplicateStamp);
+  EXPECT_TRUE(std::isfinite(d->turn_rate));
+  EXPECT_TRUE(std::isfinite(d->brush.F_x) && std::isfinite(d->brush.F_y) && std::isfinite(d->brush.M_z));
 }
 
 TEST(ContactEstimator, StandstillHoldsTheFrame)

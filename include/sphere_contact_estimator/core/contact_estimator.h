@@ -29,7 +29,7 @@ namespace estimate_flags
 {
 constexpr std::uint32_t kTimeJumpReset = 1u << 0;   ///< stamp went backwards (looping bag): state reset
 constexpr std::uint32_t kGapReset = 1u << 1;        ///< gap longer than max_step: transient state reset
-constexpr std::uint32_t kDuplicateStamp = 1u << 2;  ///< same stamp as the last message: not advanced
+constexpr std::uint32_t kDuplicateStamp = 1u << 2;  ///< within 1 ns of the last stamp: not advanced
 constexpr std::uint32_t kStandstill = 1u << 3;      ///< V_r below standstill_speed: slips undefined
 constexpr std::uint32_t kHeadingReset = 1u << 4;    ///< rolling direction re-initialised (after standstill
                                                     ///< or a jump): the transient state was turned with it
@@ -113,6 +113,8 @@ public:
   /// Heading changes larger than this between two messages re-initialise the frame instead of counting
   /// as a turn rate [rad].
   static constexpr double kHeadingJump = 0.5;
+  /// Stamps closer than a ROS stamp's resolution (1 ns) count as duplicates.
+  static constexpr double kMinStep = 1e-9;
 
 private:
   void rebuildBrush(const EstimatorSettings& next);
