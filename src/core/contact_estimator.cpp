@@ -131,13 +131,25 @@ void ContactEstimator::reset()
     brush_->reset();
 }
 
+bool ContactEstimator::slipsRepresentable(const EstimatorInput& in, const Eigen::Vector2d& V_r, double speed) const
+{
+  // The slips divide by V_r: past the standstill speed (which may be tiny) the ratios must stay finite, the
+  // turn rate's included (at most pi per kMinStep); fuzz_estimator found omega_z = -2e307 rad/s at V_r = 2 mm/s.
+  if (speed < settings_.standstill_speed)
+    return true;
+  const double V_s = (in.v_contact.head<2>() - V_r).norm();
+  const double turn = std::abs(in.omega.z()) * (1.0 + std::abs(1.0 - settings_.tilt_ratio)) + pi / kMinStep;
+  return std::isfinite(V_s / speed) && std::isfinite(turn / speed);
+}
+
 const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
 {
   const double R = settings_.rolling_radius;
   const Eigen::Vector2d V_r(in.omega.y() * R, -in.omega.x() * R);  // pure rolling, ROS axes (conventions.md)
   const double speed = V_r.norm();
   if (!(std::isfinite(in.stamp) && in.omega.allFinite() && in.v_contact.allFinite() && speed <= CylinderModel::kMaxSpeed &&
-        in.v_contact.norm() <= CylinderModel::kMaxSpeed))
+        in.v_contact.norm() <= CylinderModel::kMaxSpeed && in.omega.norm() * R <= CylinderModel::kMaxSpeed &&
+        slipsRepresentable(in, V_r, speed)))
     return nullptr;
   const auto start = std::chrono::steady_clock::now();
   ContactEstimateData& o = out_;

@@ -202,6 +202,35 @@ TEST(ContactEstimator, TimeHandling)
   EXPECT_EQ(d->dt, 0.0);
 }
 
+// Found by fuzz_estimator: omega_z = -2.2e307 rad/s at V_r = 2 mm/s gave a spin past the range of a double and NaN
+// forces from the linear model. Impossible inputs are rejected, changing nothing.
+TEST(ContactEstimator, ImpossibleSpinIsRejected)
+{
+  ContactEstimator e(settings(BrushChoice::Linear));
+  EstimatorInput in;
+  in.stamp = 0.0;
+  in.omega = Eigen::Vector3d(0.0, 0.02, -2.2345e307);
+  in.v_contact = Eigen::Vector3d(1.77311e-307, 0.0, 0.0);
+  EXPECT_EQ(e.update(in), nullptr);
+  in.omega.z() = 1e3;
+  const ContactEstimateData* d = e.update(in);
+  ASSERT_TRUE(d);
+  EXPECT_TRUE(std::isfinite(d->brush.F_x) && std::isfinite(d->brush.F_y) && std::isfinite(d->brush.M_z));
+  EXPECT_EQ(d->flags & estimate_flags::kDuplicateStamp, 0u);  // the rejected message left no stamp behind
+
+  // a slip past the range of a double under a tiny standstill speed
+  EstimatorSettings s = settings(BrushChoice::Linear);
+  s.standstill_speed = 1e-300;
+  ContactEstimator f(s);
+  in.omega = Eigen::Vector3d(0.0, 1e-298, 0.0);
+  in.v_contact = Eigen::Vector3d(1e10, 0.0, 0.0);
+  EXPECT_EQ(f.update(in), nullptr);
+  in.v_contact.x() = 1e-299;
+  d = f.update(in);
+  ASSERT_TRUE(d);
+  EXPECT_TRUE(d->slip.allFinite() && std::isfinite(d->brush.F_x));
+}
+
 // Found by fuzz_estimator: a turn over a denormal step (5.9e-315 s) made the turn rate infinite.
 TEST(ContactEstimator, TurnOverADenormalStepIsADuplicate)
 {

@@ -95,8 +95,9 @@ public:
   void configure(const EstimatorSettings& settings);
   const EstimatorSettings& settings() const { return settings_; }
 
-  /// Processes one message. Returns nullptr, changing nothing, when the input is not finite; otherwise
-  /// the estimate, valid until the next call.
+  /// Processes one message. Returns nullptr, changing nothing, when the input is not finite or impossible
+  /// (a speed or the sphere's surface faster than light, slips past the range of a double); otherwise the
+  /// estimate, valid until the next call.
   const ContactEstimateData* update(const EstimatorInput& input);
 
   /// Forgets the history: time, heading, turn rate, transient bristles.
@@ -117,6 +118,7 @@ public:
   static constexpr double kMinStep = 1e-9;
 
 private:
+  bool slipsRepresentable(const EstimatorInput& in, const Eigen::Vector2d& V_r, double speed) const;
   void rebuildBrush(const EstimatorSettings& next);
   void rebuildCylinder(const EstimatorSettings& next);
 
