@@ -145,7 +145,7 @@ bool ContactEstimator::slipsRepresentable(const EstimatorInput& in, const Eigen:
 const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
 {
   const double R = settings_.rolling_radius;
-  const Eigen::Vector2d V_r(in.omega.y() * R, -in.omega.x() * R);  // pure rolling, ROS axes (conventions.md)
+  const Eigen::Vector2d V_r(in.omega.y() * R, -in.omega.x() * R);  // pure rolling, ROS axes (docs/conventions.md)
   const double speed = V_r.norm();
   if (!(std::isfinite(in.stamp) && in.omega.allFinite() && in.v_contact.allFinite() && speed <= CylinderModel::kMaxSpeed &&
         in.v_contact.norm() <= CylinderModel::kMaxSpeed && in.omega.norm() * R <= CylinderModel::kMaxSpeed &&

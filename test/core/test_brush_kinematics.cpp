@@ -12,7 +12,7 @@ namespace
 {
 TEST(BrushKinematics, PureRollingHasNoSlip)
 {
-  // conventions.md: V_r = [-omega_y, omega_x] R_r; a sphere rolling without slip has V_C = V_r.
+  // docs/conventions.md: V_r = [-omega_y, omega_x] R_r; a sphere rolling without slip has V_C = V_r.
   const double R = 0.2;
   const Eigen::Vector3d omega(0.3, -5.0, 0.0);
   const Eigen::Vector2d V_C(-omega.y() * R, omega.x() * R);

@@ -36,7 +36,7 @@ EstimatorInput rolling(double stamp, double v, double yaw, double ds_along, doub
   EstimatorInput in;
   in.stamp = stamp;
   const Eigen::Vector2d d(std::cos(yaw), std::sin(yaw)), left(-d.y(), d.x());
-  // V_r = R (omega_y, -omega_x) along d (conventions.md)
+  // V_r = R (omega_y, -omega_x) along d (docs/conventions.md)
   in.omega = Eigen::Vector3d(-d.y() * v / R, d.x() * v / R, omega_z);
   const Eigen::Vector2d vc = (v + ds_along) * d + ds_left * left;
   in.v_contact = Eigen::Vector3d(vc.x(), vc.y(), 0.0);

@@ -19,7 +19,7 @@ namespace sphere_contact_estimator::test
 /// undeformed at the leading edge (eq. 8): without friction this is eq. 23 resp. eq. 51. With friction
 /// the deflection is capped as it goes: where adhesion would need |k u| > mu q_z the bristle slides with
 /// |q| = mu q_z along the rigid sliding field sigma + A_phi x (Sect. 6), and where the bound later
-/// exceeds what adhesion needs it re-adheres from its capped deflection (conventions.md).
+/// exceeds what adhesion needs it re-adheres from its capped deflection (docs/conventions.md).
 ///
 /// Discretisation: `resolution` paths at y = a sin(theta) (or rho = |R_gamma| + a sin(theta)) with
 /// theta at the midpoints of equal intervals, so the path lengths' square-root end behaviour is

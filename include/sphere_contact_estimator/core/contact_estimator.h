@@ -36,7 +36,7 @@ constexpr std::uint32_t kHeadingReset = 1u << 4;    ///< rolling direction re-in
 }  // namespace estimate_flags
 
 /// One estimate, everything in the ROS contact frame (REP 103: x along the rolling direction, y left,
-/// z up; conventions.md): lateral slips and forces, spins and yaw moments have the opposite sign of the
+/// z up; docs/conventions.md): lateral slips and forces, spins and yaw moments have the opposite sign of the
 /// paper frame's.
 struct ContactEstimateData
 {
@@ -80,7 +80,7 @@ struct ContactEstimateData
 /// forces and rolling resistance out, with the state that links messages (time, heading, turn rate, the
 /// transient bristles). ROS-free; the ROS layer converts messages and frames.
 ///
-/// Per message: V_r = R_r (omega_y, -omega_x) in the ground frame (conventions.md); the contact frame's x
+/// Per message: V_r = R_r (omega_y, -omega_x) in the ground frame (docs/conventions.md); the contact frame's x
 /// follows V_r (held at standstill); psi_dot is the low-passed rate of that heading (or (1 - chi_gamma)
 /// omega_z); vectors are rotated into the contact frame, converted to the paper frame (x, -y, -z), fed to
 /// the models, and the results converted back.

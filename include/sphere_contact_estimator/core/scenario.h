@@ -36,7 +36,7 @@ struct ScenarioSample
 };
 
 /// A manoeuvre of a spherical robot of rolling radius R, sampled at a fixed rate: pure rolling at V_r along
-/// the heading (omega_y = V_r / R in body axes, conventions.md) plus the sliding velocities of the segment.
+/// the heading (omega_y = V_r / R in body axes, docs/conventions.md) plus the sliding velocities of the segment.
 class Scenario
 {
 public:
