@@ -13,7 +13,13 @@ cmake -S "$REPO" -B "$B" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE
   -DCMAKE_CXX_FLAGS="$FLAGS" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
   -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" > "$B.configure.log" 2>&1 || { cat "$B.configure.log"; exit 1; }
 TESTS=(test_cylinder test_brush test_contact_estimator test_contact_eval)
-make -C "$B" -j"$(nproc)" "${TESTS[@]}" 2>&1 | grep -E "error|warning: .*sanitiz" || true
+# a failed build fails the job (the last good binaries must never be the ones tested)
+if ! make -C "$B" -j"$(nproc)" "${TESTS[@]}" > "$B.build.log" 2>&1; then
+  grep -E "error|Error" "$B.build.log" | head -40
+  log "the sanitizer build FAILED ($B.build.log)"
+  exit 1
+fi
+grep -E "warning: .*sanitiz" "$B.build.log" || true  # only shows the warnings; the build's status is above
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 rc=0
 for t in "${TESTS[@]}"; do

@@ -16,7 +16,12 @@ log "building the nodelet and the load test with ThreadSanitizer in $B"
 cmake -S "$REPO" -B "$B" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=None -DCATKIN_ENABLE_TESTING=ON \
   -DCMAKE_CXX_FLAGS="$FLAGS" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" \
   -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=thread" > "$B.configure.log" 2>&1 || { cat "$B.configure.log"; exit 1; }
-make -C "$B" -j"$(nproc)" "${PKG}_nodelet" test_load 2>&1 | grep -E "error" || true
+# a failed build fails the job (the last good binaries must never be the ones tested)
+if ! make -C "$B" -j"$(nproc)" "${PKG}_nodelet" test_load > "$B.build.log" 2>&1; then
+  grep -E "error|Error" "$B.build.log" | head -40
+  log "the ThreadSanitizer build FAILED ($B.build.log)"
+  exit 1
+fi
 
 set +u
 # shellcheck disable=SC1091

@@ -116,11 +116,12 @@ CylinderState CylinderExact::solve(double v, Slopes* slopes) const
         G_hi = G_x;
       }
     }
-    std::uintmax_t iterations = 200;
-    const auto bracket = boost::math::tools::toms748_solve(G, lo, hi, G_lo, G_hi,
-                                                           boost::math::tools::eps_tolerance<double>(kToleranceBits),
-                                                           iterations);
+    std::uintmax_t iterations = max_iterations_;
+    boost::math::tools::eps_tolerance<double> tolerance(kToleranceBits);
+    const auto bracket = boost::math::tools::toms748_solve(G, lo, hi, G_lo, G_hi, tolerance, iterations);
     s = 0.5 * (bracket.first + bracket.second);
+    if (!tolerance(bracket.first, bracket.second))  // the limit stopped it, not the tolerance
+      st.flags |= cylinder_flags::kRootNotConverged;
     st.regime = CylinderRegime::ContactPatch;
   }
 

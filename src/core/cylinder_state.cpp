@@ -41,6 +41,9 @@ std::vector<std::string> describe(std::uint32_t flags)
                      "poor approximation of the circle");
   if (flags & kTableFallback)
     out.emplace_back("speed outside the tabulated range: evaluated by the exact solver");
+  if (flags & kRootNotConverged)
+    out.emplace_back("the root of eq. 18 was not found to tolerance within the iteration limit: the state is "
+                     "the midpoint of the last bracket");
   return out;
 }
 }  // namespace cylinder_flags

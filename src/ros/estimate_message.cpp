@@ -23,7 +23,8 @@ static_assert(RollingResistance::FLAG_UNDERDAMPED == cylinder_flags::kUnderdampe
               RollingResistance::FLAG_NO_STEADY_STATE == cylinder_flags::kNoSteadyState &&
               RollingResistance::FLAG_EXPANSION_OUT_OF_RANGE == cylinder_flags::kExpansionOutOfRange &&
               RollingResistance::FLAG_LARGE_DEFORMATION == cylinder_flags::kLargeDeformation &&
-              RollingResistance::FLAG_TABLE_FALLBACK == cylinder_flags::kTableFallback);
+              RollingResistance::FLAG_TABLE_FALLBACK == cylinder_flags::kTableFallback &&
+                  RollingResistance::FLAG_ROOT_NOT_CONVERGED == cylinder_flags::kRootNotConverged);
 static_assert(RollingResistance::REGIME_STATIC == static_cast<int>(CylinderRegime::Static) &&
               RollingResistance::REGIME_CONTACT_PATCH == static_cast<int>(CylinderRegime::ContactPatch) &&
               RollingResistance::REGIME_POINT_CONTACT == static_cast<int>(CylinderRegime::PointContact) &&

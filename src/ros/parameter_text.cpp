@@ -1,6 +1,8 @@
 #include "sphere_contact_estimator/ros/parameter_text.h"
 
 // STL
+#include <climits>
+#include <cmath>
 #include <cstdlib>
 
 // Package
@@ -8,6 +10,15 @@
 
 namespace sphere_contact_estimator
 {
+namespace
+{
+// a whole number within int's range (a cast of one beyond it is undefined)
+bool isInt(double x)
+{
+  return std::isfinite(x) && x >= static_cast<double>(INT_MIN) && x <= static_cast<double>(INT_MAX) && std::trunc(x) == x;
+}
+}  // namespace
+
 std::vector<std::string> repairTextParameters(const ros::NodeHandle& pnh, bool& all_repaired)
 {
   std::vector<std::string> lines;
@@ -35,7 +46,7 @@ std::vector<std::string> repairTextParameters(const ros::NodeHandle& pnh, bool& 
       lines.push_back(name + " was the text '" + text + "' (YAML 1.1 reads an exponent without a sign as text; " +
                       "write 1.0e+8): read as " + std::to_string(x));
     }
-    else if (number && d->type == "int" && x == static_cast<int>(x))
+    else if (number && d->type == "int" && isInt(x))
     {
       pnh.setParam(d->name, static_cast<int>(x));
       lines.push_back(name + " was the text '" + text + "': read as " + std::to_string(static_cast<int>(x)));

@@ -122,5 +122,29 @@ TEST(CylinderConvergence, SlopesMatchFiniteDifferences)
   }
 }
 
+// The root of eq. 18 that the iteration limit stops short of is flagged (and invalidates the state); the
+// default limit is never reached over the paper's speeds.
+TEST(CylinderConvergence, UnconvergedRootIsFlagged)
+{
+  CylinderExact exact(paperParameters());
+  for (double v : { 0.01, 0.1, 1.0, 10.0 })
+  {
+    const CylinderState converged = exact.solve(v);
+    EXPECT_EQ(converged.flags & cylinder_flags::kRootNotConverged, 0u) << v;
+  }
+  exact.setMaxIterations(1);
+  int flagged = 0;
+  for (double v : { 0.01, 0.1, 1.0, 10.0 })
+  {
+    const CylinderState s = exact.solve(v);
+    if (s.regime != CylinderRegime::ContactPatch)
+      continue;
+    EXPECT_TRUE(s.flags & cylinder_flags::kRootNotConverged) << v;
+    EXPECT_FALSE(s.valid()) << v;
+    ++flagged;
+  }
+  EXPECT_GT(flagged, 0);
+}
+
 }  // namespace
 }  // namespace sphere_contact_estimator

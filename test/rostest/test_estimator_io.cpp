@@ -158,6 +158,19 @@ TEST(ParameterText, NumbersReadAsTextAreRepaired)
   EXPECT_EQ(frame, "1e3");
   EXPECT_TRUE(pnh.getParam("surface_damping", damping));
   EXPECT_EQ(damping, 1e5);
+  // whole numbers beyond int's range, and fractions, are no int: deleted
+  for (const char* text : { "1e300", "3e9", "-3e9", "24.5", "nan", "inf" })
+  {
+    pnh.setParam("resolution", std::string(text));
+    EXPECT_EQ(sce::repairTextParameters(pnh, all_repaired).size(), 1u) << text;
+    EXPECT_FALSE(all_repaired) << text;
+    EXPECT_FALSE(pnh.hasParam("resolution")) << text;
+  }
+  pnh.setParam("resolution", std::string("2147483647"));
+  sce::repairTextParameters(pnh, all_repaired);
+  EXPECT_TRUE(all_repaired);
+  EXPECT_TRUE(pnh.getParam("resolution", resolution));
+  EXPECT_EQ(resolution, 2147483647);
   pnh.deleteParam("");
 }
 

@@ -1,5 +1,8 @@
 #pragma once
 
+// STL
+#include <cstdint>
+
 // Package
 #include "sphere_contact_estimator/core/cylinder_model.h"
 
@@ -42,9 +45,17 @@ public:
   /// Residual of eq. 18 at front boundary xi_+ and speed v: F_N + F'_N - M g [N/m].
   double residual(double xi_plus, double v) const;
 
+  /// Iteration limit of the root finder (TOMS 748); a root not found to tolerance within it is flagged
+  /// kRootNotConverged, which invalidates the state. The default is never reached on the parameters' range
+  /// (it needs about 10); tests lower it.
+  void setMaxIterations(std::uintmax_t iterations) { max_iterations_ = iterations; }
+
   /// Relative tolerance of the root finder on xi_+ (the issue asks for about 1e-12).
   static constexpr int kToleranceBits = 48;  // 2^(1-48) = 7.1e-15
   static constexpr double kLargeDeformation = 0.5;  ///< xi_+ / R beyond which eq. 4 is poor
+
+private:
+  std::uintmax_t max_iterations_ = 200;
 };
 
 }  // namespace sphere_contact_estimator
