@@ -67,6 +67,15 @@ ContactEstimator::ContactEstimator(const EstimatorSettings& settings)
   rebuildBrush(settings);
   rebuildCylinder(settings);
   settings_ = settings;
+  adopt();
+}
+
+void ContactEstimator::adopt()
+{
+  // the scene's patch and load, whether or not a brush model runs (the markers draw them)
+  const BrushParameters p = settings_.brushParameters();
+  patch_radius_ = p.a;
+  load_ = p.F_z;
 }
 
 void ContactEstimator::configure(const EstimatorSettings& next)
@@ -84,6 +93,7 @@ void ContactEstimator::configure(const EstimatorSettings& next)
   if (brush_changes)
     rebuildBrush(next);
   settings_ = next;
+  adopt();
 }
 
 void ContactEstimator::rebuildBrush(const EstimatorSettings& next)
@@ -244,10 +254,10 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   o.brush_resolution = 0;
   o.brush = BrushForces{};
   o.friction = 0.0;
+  o.patch_radius = patch_radius_;
+  o.load = load_;
   if (brush_)
   {
-    o.patch_radius = brush_->parameters().a;
-    o.load = brush_->parameters().F_z;
     o.brush = brush_->update(kin, dt);
     o.brush_model_used = settings_.brush_model;
     o.brush_resolution = brush_->kind() == BrushModelKind::Transient ? brush_->parameters().resolution : 0;

@@ -47,7 +47,8 @@ ContactEstimatorRos::ContactEstimatorRos(ros::NodeHandle nh, ros::NodeHandle pnh
   // A bounded queue deep enough for bursts (a bag, a driver catching up): older messages are dropped beyond it.
   odom_sub_ = nh_.subscribe("odom", queue_size, &ContactEstimatorRos::odometryCallback, this,
                             ros::TransportHints().tcpNoDelay());
-  diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(0.25), [this](const ros::WallTimerEvent&) { updater_.update(); });
+  // force_update: Updater::update() waits for ros::Time to pass its period, which a paused /clock never does
+  diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(0.25), [this](const ros::WallTimerEvent&) { updater_.force_update(); });
   ROS_INFO_STREAM("contact estimator: listening on " << odom_sub_.getTopic() << ", publishing "
                                                      << estimate_pub_.getTopic());
 }
@@ -88,7 +89,7 @@ void ContactEstimatorRos::odometryCallback(const nav_msgs::Odometry::ConstPtr& m
   std::lock_guard<std::mutex> lock(mutex_);
   ++received_;
   ++window_received_;
-  last_received_ = ros::Time::now();
+  last_received_ = ros::WallTime::now();  // wall time: a paused /clock must not freeze the age
   SkipReason reason;
   const EstimateOutputs* out = estimator_.process(*msg, tf_buffer_, reason);
   if (!out)
@@ -208,7 +209,7 @@ void ContactEstimatorRos::diagnoseInput(diagnostic_updater::DiagnosticStatusWrap
   const OdometryEstimator::Counters& c = estimator_.counters();
   status.add("rejected (non-finite or impossible)", c.rejected);
   status.add("time jumps backwards", c.time_jumps);
-  const double age = received_ ? (ros::Time::now() - last_received_).toSec() : -1.0;
+  const double age = received_ ? (now - last_received_).toSec() : -1.0;
   status.add("age of last message [s]", age);
   if (compute_count_)
   {

@@ -337,6 +337,13 @@ TEST(ContactEstimator, ConfigureKeepsOrRejects)
   EXPECT_EQ(d->brush.F_x, 0.0);
   EXPECT_EQ(d->rolling_resistance_force, 0.0);
   EXPECT_TRUE(d->valid());
+  // the patch and load the markers draw follow the settings with the brush model off
+  s.load = 1234.0;
+  s.patch_radius = 0.021;
+  e.configure(s);
+  d = e.update(rolling(0.22, 1.0, 0.0, 0.01, 0.0, 0.0));
+  EXPECT_EQ(d->load, 1234.0);
+  EXPECT_EQ(d->patch_radius, 0.021);
 }
 
 }  // namespace

@@ -51,8 +51,8 @@ struct ContactEstimateData
   double spin = 0.0, spin_tilt = 0.0, spin_turn = 0.0;  ///< phi, phi_gamma, phi_psi [1/m]
   double tilt_ratio = 1.0;    ///< chi_gamma (1 when omega_z = 0)
   Eigen::Vector2d epsilon = Eigen::Vector2d::Zero();  ///< eq. 12b in the paper's contact frame: (0, 1) when defined
-  double patch_radius = 0.0;  ///< a [m]
-  double load = 0.0;          ///< F_z [N]
+  double patch_radius = 0.0;  ///< a [m], of the current settings (also with the brush model off)
+  double load = 0.0;          ///< F_z [N], of the current settings (also with the brush model off)
 
   BrushChoice brush_model = BrushChoice::Off;       ///< as configured
   BrushChoice brush_model_used = BrushChoice::Off;  ///< the model that ran (differs under auto)
@@ -118,11 +118,13 @@ public:
   static constexpr double kMinStep = 1e-9;
 
 private:
+  void adopt();
   bool slipsRepresentable(const EstimatorInput& in, const Eigen::Vector2d& V_r, double speed) const;
   void rebuildBrush(const EstimatorSettings& next);
   void rebuildCylinder(const EstimatorSettings& next);
 
   EstimatorSettings settings_;
+  double patch_radius_ = 0.0, load_ = 0.0;  // of settings_, set by adopt()
   std::unique_ptr<BrushModel> brush_;
   std::unique_ptr<CylinderModel> cylinder_;
   ContactEstimateData out_;

@@ -80,7 +80,7 @@ private:
   std::uint64_t window_received_ = 0;
   std::uint64_t reported_rejected_ = 0, reported_time_jumps_ = 0, reported_no_orientation_ = 0;  // at the last report
   ros::WallTime window_start_;
-  ros::Time last_received_;
+  ros::WallTime last_received_;  // staleness is measured on the wall clock
   double compute_sum_ = 0.0, compute_max_ = 0.0;
   std::uint64_t compute_count_ = 0;
   std::uint32_t last_brush_flags_ = 0, last_rr_flags_ = 0, last_flags_ = 0;
