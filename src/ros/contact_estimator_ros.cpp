@@ -108,9 +108,10 @@ void ContactEstimatorRos::odometryCallback(const nav_msgs::Odometry::ConstPtr& m
   if (e.flags & estimate_flags::kTimeJumpReset)
     ROS_WARN("contact estimator: time went backwards (a looping bag?): state reset");
 
-  estimate_pub_.publish(out->estimate);
-  brush_wrench_pub_.publish(out->brush_wrench);
-  rr_wrench_pub_.publish(out->rolling_resistance_wrench);
+  // by shared pointer: a subscriber in the same nodelet manager gets the message without a copy
+  publish(estimate_pub_, estimate_pool_, out->estimate);
+  publish(brush_wrench_pub_, brush_wrench_pool_, out->brush_wrench);
+  publish(rr_wrench_pub_, rr_wrench_pool_, out->rolling_resistance_wrench);
   ++published_;
   if (out->has_transform)
     tf_broadcaster_.sendTransform(out->contact_transform);

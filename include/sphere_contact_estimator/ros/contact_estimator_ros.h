@@ -27,6 +27,7 @@
 #include "sphere_contact_estimator/ContactEstimate.h"
 #include "sphere_contact_estimator/ContactEstimatorConfig.h"
 #include "sphere_contact_estimator/core/contact_estimator.h"
+#include "sphere_contact_estimator/ros/message_pool.h"
 #include "sphere_contact_estimator/ros/odometry_estimator.h"
 
 namespace sphere_contact_estimator
@@ -51,6 +52,17 @@ private:
   void odometryCallback(const nav_msgs::Odometry::ConstPtr& msg);
   void reconfigureCallback(ContactEstimatorConfig& config, uint32_t level);
   void publishMarkers(const ContactEstimateData& estimate, const std_msgs::Header& header);
+  /// Copies the message into one from the pool (no allocation once its strings have their capacity) and
+  /// publishes that by pointer; skipped without subscribers.
+  template <class M>
+  static void publish(ros::Publisher& publisher, MessagePool<M>& pool, const M& message)
+  {
+    if (publisher.getNumSubscribers() == 0)
+      return;
+    const boost::shared_ptr<M> m = pool.acquire();
+    *m = message;
+    publisher.publish(boost::shared_ptr<const M>(m));
+  }
   void diagnoseInput(diagnostic_updater::DiagnosticStatusWrapper& status);
   void diagnoseTf(diagnostic_updater::DiagnosticStatusWrapper& status);
   void diagnoseModels(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -74,6 +86,8 @@ private:
   ContactEstimatorConfig config_;  // the accepted configuration
   double stale_timeout_ = 1.0;
   visualization_msgs::MarkerArray markers_;  // reused so the hot path does not allocate it
+  MessagePool<ContactEstimate> estimate_pool_;
+  MessagePool<geometry_msgs::WrenchStamped> brush_wrench_pool_, rr_wrench_pool_;
 
   // **** diagnostics counters (guarded by mutex_; the estimator keeps its own)
   std::uint64_t received_ = 0, published_ = 0;
