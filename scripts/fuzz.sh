@@ -2,26 +2,39 @@
 # libFuzzer targets (clang, libclang-rt-14-dev from apt) for the kinematics, the brush and cylinder models
 # and the odometry -> estimate path, with AddressSanitizer and UndefinedBehaviorSanitizer, each from its
 # committed seed corpus in fuzz/corpus/<target>. By default a fixed seed and a fixed number of runs per target
-# (bounded, about 15 s each, and reproducible: CI explores the same inputs every time); FUZZ_SECONDS=N fuzzes
-# each target for N s with a random seed instead. .ci/run runs the default. A crash leaves its input in
-# $WS/fuzz/ and fails the run.
+# (bounded, and reproducible: CI explores the same inputs every time; FUZZ_RUNS_PERCENT scales them, FUZZ_TARGETS
+# picks targets);
+# FUZZ_SECONDS=N fuzzes each target for N s with a random seed instead (the README says how long 10^7 executions
+# take). .ci/run runs the default. A failure leaves its input in $WS/fuzz/ and fails the run.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 APT_PACKAGES+=(clang libclang-rt-14-dev)
 install_deps
-declare -A RUNS=([fuzz_kinematics]=2000000 [fuzz_brush]=400 [fuzz_cylinder]=300000 [fuzz_estimator]=1500)
+# at least 10^5 inputs of each (the brush and estimator targets bound their cost per input, fuzz/*.cpp)
+declare -A RUNS=([fuzz_kinematics]=2000000 [fuzz_brush]=100000 [fuzz_cylinder]=300000 [fuzz_estimator]=100000)
 OUTDIR="$WS/fuzz"
+B="${WS}_fuzz"
 mkdir -p "$OUTDIR"
-CORE=("$REPO"/src/core/*.cpp)
+# the targets come from the package's own CMakeLists.txt (option SCE_FUZZ): the same core library definition
+SAN="-fsanitize=address,undefined -fno-sanitize-recover=undefined"
+log "configuring the fuzz targets with clang in $B"
+cmake -S "$REPO" -B "$B" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSCE_FUZZ=ON \
+  -DCATKIN_ENABLE_TESTING=OFF -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+  -DCMAKE_CXX_FLAGS="$SAN -fsanitize=fuzzer-no-link" -DCMAKE_EXE_LINKER_FLAGS="$SAN" \
+  -DCMAKE_SHARED_LINKER_FLAGS="$SAN" > "$B.configure.log" 2>&1 || { cat "$B.configure.log"; exit 1; }
+read -r -a TARGETS <<< "${FUZZ_TARGETS:-fuzz_kinematics fuzz_brush fuzz_cylinder fuzz_estimator}"
+log "building ${TARGETS[*]}"
+if ! make -C "$B" -j"$(nproc)" "${TARGETS[@]}" > "$B.build.log" 2>&1; then
+  grep -E "error|Error" "$B.build.log" | head -40
+  log "the fuzz build FAILED ($B.build.log)"
+  exit 1
+fi
 rc=0
-for target in fuzz_kinematics fuzz_brush fuzz_cylinder fuzz_estimator; do
-  bin="$OUTDIR/$target"
-  if [ ! -x "$bin" ] || [ -n "$(find "$REPO/src/core" "$REPO/include" "$REPO/fuzz" -newer "$bin" -print -quit)" ]; then
-    log "building $target"
-    clang++ -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-      -I "$REPO/include" -I /usr/include/eigen3 "$REPO/fuzz/$target.cpp" "${CORE[@]}" -o "$bin"
-  fi
+for target in "${TARGETS[@]}"; do
+  bin="$B/devel/lib/$PKG/$target"
+  [ -x "$bin" ] || bin="$(find "$B" -type f -name "$target" -perm -u+x | head -1)"
+  runs=$(( ${RUNS[$target]} * ${FUZZ_RUNS_PERCENT:-100} / 100 ))
   work="$OUTDIR/${target}_corpus"
   [ -n "${FUZZ_SECONDS:-}" ] || rm -rf "$work"  # the reproducible run starts from the seeds alone
   mkdir -p "$work"
@@ -29,16 +42,16 @@ for target in fuzz_kinematics fuzz_brush fuzz_cylinder fuzz_estimator; do
     budget=(-max_total_time="$FUZZ_SECONDS")
     log "fuzzing $target for $FUZZ_SECONDS s"
   else
-    budget=(-runs="${RUNS[$target]}" -seed=1)
-    log "fuzzing $target: ${RUNS[$target]} runs, seed 1"
+    budget=(-runs="$runs" -seed=1)
+    log "fuzzing $target: $runs runs, seed 1"
   fi
-  if ! (cd "$OUTDIR" && UBSAN_OPTIONS=halt_on_error=1 "$bin" "${budget[@]}" -max_len=512 \
-        -print_final_stats=1 "$work" "$REPO/fuzz/corpus/$target" 2>&1 | grep -E "^#[0-9]+ *DONE|stat::number_of_executed_units|ERROR|runtime error|Assertion|deadly signal|SUMMARY" ); then
-    :
-  fi
-  found=$(find "$OUTDIR" -maxdepth 1 \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) -newer "$bin" | head -3)
-  if [ -n "$found" ]; then
-    log "$target found a failure: $found"
+  status=0
+  (cd "$OUTDIR" && UBSAN_OPTIONS=halt_on_error=1 "$bin" "${budget[@]}" -max_len=512 -print_final_stats=1 \
+    "$work" "$REPO/fuzz/corpus/$target" > "$OUTDIR/$target.log" 2>&1) || status=$?
+  grep -E "^#[0-9]+ *DONE|stat::number_of_executed_units|ERROR|runtime error|Assertion|deadly signal|SUMMARY" \
+    "$OUTDIR/$target.log" || true
+  if [ "$status" -ne 0 ]; then
+    log "$target FAILED (exit $status; $OUTDIR/$target.log, the input in $OUTDIR/crash-* or the like)"
     rc=1
   fi
 done

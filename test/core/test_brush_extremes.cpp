@@ -147,5 +147,37 @@ TEST(BrushExtremes, TiltingRadiusAcrossThePatchRadius)
   }
 }
 
+// Without load there is no friction to give: every model answers exactly zero (fuzz_brush once found a transient
+// force of 3.7e-186 N against mu F_z = 0 at a = 1.8e-4 m, k = 1e-3, mu = 0.126, tilt, resolution 2, V_r = 0).
+TEST(BrushExtremes, NoLoadNoForce)
+{
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (auto kind : { BrushModelKind::Linear, BrushModelKind::Steady, BrushModelKind::Transient, BrushModelKind::Auto })
+    for (bool tilt : { false, true })
+    {
+      BrushParameters p;
+      p.a = 1.8e-4;
+      p.k = 1e-3;
+      p.mu = 0.126;
+      p.F_z = 0.0;
+      p.tilt = tilt;
+      p.resolution = 2;
+      const auto model = makeBrushModel(kind, p);
+      for (int i = 0; i < 2000; ++i)
+      {
+        ContactKinematics k;
+        k.V_r = Eigen::Vector2d(u(rng), u(rng)) * (i % 3 == 0 ? 0.0 : std::pow(10.0, 3.0 * u(rng)));
+        k.V_s = Eigen::Vector2d(u(rng), u(rng)) * std::pow(10.0, 3.0 * u(rng));
+        k.omega_z = u(rng) * std::pow(10.0, 4.0 * u(rng));
+        k.psi_dot = k.omega_z * u(rng);
+        const BrushForces f = model->update(k, 0.005 * (1.0 + u(rng)));
+        ASSERT_EQ(f.F_x, 0.0) << toString(kind) << " tilt " << tilt << " step " << i;
+        ASSERT_EQ(f.F_y, 0.0) << toString(kind) << " tilt " << tilt << " step " << i;
+        ASSERT_EQ(f.M_z, 0.0) << toString(kind) << " tilt " << tilt << " step " << i;
+      }
+    }
+}
+
 }  // namespace
 }  // namespace sphere_contact_estimator
