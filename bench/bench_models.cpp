@@ -129,7 +129,7 @@ BENCHMARK(BM_CylinderTableMuRoll);
 void BM_EstimatorUpdate(benchmark::State& state)
 {
   sce::EstimatorSettings s;
-  s.brush_model = static_cast<sce::BrushChoice>(state.range(0));
+  s.brush_model = static_cast<sce::BrushModelKind>(state.range(0));
   s.bristle_stiffness = 2e8;
   s.standstill_speed = 0.05;
   s.surface_stiffness = 1e8;

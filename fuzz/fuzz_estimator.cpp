@@ -12,8 +12,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 {
   fuzz::Input in(data, size);
   EstimatorSettings s;
-  s.brush_model = static_cast<BrushChoice>(static_cast<int>(in.in(0.0, 4.99)));
-  s.rolling_resistance_model = static_cast<RollingResistanceChoice>(static_cast<int>(in.in(0.0, 3.99)));
+  s.brush_model = static_cast<BrushModelKind>(static_cast<int>(in.in(0.0, 4.99)));
+  s.rolling_resistance_model = static_cast<CylinderModelKind>(static_cast<int>(in.in(0.0, 3.99)));
   s.tilt = in.in(0.0, 1.0) < 0.5;
   s.resolution = 4 + static_cast<int>(in.in(0.0, 4.99));
   ContactEstimator e(s);

@@ -6,6 +6,12 @@ set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 OUT="${SCE_OUTPUT:-$WS/output}"
+# the parameter file's brush model as a number (it may be written as a name)
+default_brush_model() {
+  local m
+  m=$(sed -n 's/^brush_model: *\([a-z0-9]*\).*/\1/p' "$REPO/config/contact_estimator.yaml")
+  case "$m" in off) echo 0 ;; linear) echo 1 ;; steady) echo 2 ;; transient) echo 3 ;; auto) echo 4 ;; *) echo "$m" ;; esac
+}
 install_deps
 build bench_models model_accuracy node_benchmark contact_estimator_node bag_analyze
 mkdir -p "$OUT"
@@ -33,5 +39,5 @@ taskset -c 0 "$BIN/node_benchmark" _duration:=2.0 > "$OUT/node.json"
 kill $NODE $ROSCORE 2>/dev/null || true
 wait 2>/dev/null || true
 /usr/bin/python3 "$REPO/scripts/benchmark_report.py" --bench "$OUT/bench.json" --accuracy "$OUT/accuracy.json" \
-  --node "$OUT/node.json" --bag "$OUT/bag.json" --default-brush-model "$(sed -n 's/^brush_model: *\([0-9]\).*/\1/p' "$REPO/config/contact_estimator.yaml")" \
+  --node "$OUT/node.json" --bag "$OUT/bag.json" --default-brush-model "$(default_brush_model)" \
   --docs "$REPO/docs"

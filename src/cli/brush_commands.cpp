@@ -191,10 +191,10 @@ void runBrushCommand(const BrushOptions& o, std::ostream& out)
 
   nlohmann::ordered_json j;
   j["model"] = toString(ran);
-  if (const auto* automatic = dynamic_cast<const BrushAuto*>(model.get()))
+  if (ran == BrushModelKind::Auto)
   {
-    j["model_used"] = toString(automatic->lastModel());
-    j["resolution_used"] = automatic->lastResolution();
+    j["model_used"] = toString(model->lastModel());
+    j["resolution_used"] = model->lastResolution();
   }
   j["Fx"] = number(f.F_x);
   j["Fy"] = number(f.F_y);

@@ -168,6 +168,7 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
 {
   checkInput(kin, dt);
   const Slips s = computeSlips(kin, p_.standstill_speed);
+  last_slips_ = s;
   const double target = p_.accuracy_target;
   const BrushModelKind before = last_model_;
   const int before_resolution = last_resolution_;
@@ -326,6 +327,14 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
   last_resolution_ = resolution;
   answered_ = true;
   return out;
+}
+
+void BrushAuto::visitBristles(const BristleVisitor& visit) const
+{
+  if (last_model_ == BrushModelKind::Transient && transient_)
+    transient_->visitBristles(visit);
+  else
+    steady_.visitBristles(last_slips_, visit);
 }
 
 }  // namespace sphere_contact_estimator

@@ -18,6 +18,8 @@ const char* toString(BrushModelKind kind)
 {
   switch (kind)
   {
+    case BrushModelKind::Off:
+      return "off";
     case BrushModelKind::Linear:
       return "linear";
     case BrushModelKind::Steady:
@@ -59,6 +61,7 @@ BrushForces BrushSlipModel::update(const ContactKinematics& kin, double dt)
 {
   checkInput(kin, dt);
   const Slips s = computeSlips(kin, p_.standstill_speed);
+  last_ = s;
   if (!s.defined)
   {
     BrushForces f;
@@ -75,6 +78,8 @@ std::unique_ptr<BrushModel> makeBrushModel(BrushModelKind kind, const BrushParam
 {
   switch (kind)
   {
+    case BrushModelKind::Off:
+      return nullptr;
     case BrushModelKind::Linear:
       return std::make_unique<BrushLinear>(parameters);
     case BrushModelKind::Steady:

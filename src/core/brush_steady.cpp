@@ -10,6 +10,7 @@
 
 // Package
 #include "sphere_contact_estimator/core/patch_integral.h"
+#include "sphere_contact_estimator/core/rolling_frame.h"
 
 namespace sphere_contact_estimator
 {
@@ -105,6 +106,20 @@ BrushForces BrushSteady::solve(const Eigen::Vector2d& sigma, double phi, double 
     }
   }
   return out;
+}
+
+void BrushSteady::visitBristles(const BristleVisitor& visit) const
+{
+  visitBristles(last_, visit);
+}
+
+void BrushSteady::visitBristles(const Slips& s, const BristleVisitor& visit) const
+{
+  if (!s.defined)
+    return;
+  const RollingFrame frame(s.epsilon);
+  evaluate(frame.toRolling(s.sigma), s.phi, s.phi_gamma, s.phi_psi,
+           [&](const Eigen::Vector2d& x, const Eigen::Vector2d&, bool sliding) { visit(frame.toPatch(x), sliding); });
 }
 
 }  // namespace sphere_contact_estimator

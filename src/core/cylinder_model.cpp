@@ -16,6 +16,8 @@ const char* toString(CylinderModelKind kind)
 {
   switch (kind)
   {
+    case CylinderModelKind::Off:
+      return "off";
     case CylinderModelKind::Exact:
       return "exact";
     case CylinderModelKind::Expansion:
@@ -85,6 +87,8 @@ std::unique_ptr<CylinderModel> makeCylinderModel(CylinderModelKind kind, const C
 {
   switch (kind)
   {
+    case CylinderModelKind::Off:
+      return nullptr;
     case CylinderModelKind::Exact:
       return std::make_unique<CylinderExact>(parameters);
     case CylinderModelKind::Expansion:

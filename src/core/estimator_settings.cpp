@@ -62,7 +62,7 @@ void EstimatorSettings::validate() const
   // the models' own checks, with the node's parameter names in front
   try
   {
-    if (brush_model != BrushChoice::Off)
+    if (brush_model != BrushModelKind::Off)
       brushParameters().validate();
   }
   catch (const std::invalid_argument& e)
@@ -72,7 +72,7 @@ void EstimatorSettings::validate() const
   }
   try
   {
-    if (rolling_resistance_model != RollingResistanceChoice::Off)
+    if (rolling_resistance_model != CylinderModelKind::Off)
       cylinderParameters().validate();
   }
   catch (const std::invalid_argument& e)

@@ -2,11 +2,18 @@
 
 // STL
 #include <cerrno>
+#include <climits>
+#include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <stdexcept>
+#include <vector>
 
 // yaml-cpp
 #include <yaml-cpp/yaml.h>
+
+// Package
+#include "sphere_contact_estimator/ros/parameter_enum.h"
 
 namespace sphere_contact_estimator
 {
@@ -50,12 +57,24 @@ void setParameter(ContactEstimatorConfig& config, const std::string& name, const
   dynamic_reconfigure::Config msg;
   if (d->type == "int")
   {
-    const double x = toDouble(name, value);
-    if (x != static_cast<int>(x))
-      throw std::invalid_argument("parameter " + name + ": '" + value + "' is not an integer");
     dynamic_reconfigure::IntParameter p;
     p.name = name;
-    p.value = static_cast<int>(x);
+    const std::vector<EnumValue> values = enumValues(d->edit_method);
+    if (!values.empty())
+    {
+      const std::optional<int> v = enumValue(values, value);
+      if (!v)
+        throw std::invalid_argument("parameter " + name + ": '" + value + "' is none of " + describeEnum(values));
+      p.value = *v;
+    }
+    else
+    {
+      const double x = toDouble(name, value);
+      // a whole number within int's range (a cast of one beyond it is undefined)
+      if (!(x >= static_cast<double>(INT_MIN) && x <= static_cast<double>(INT_MAX) && std::trunc(x) == x))
+        throw std::invalid_argument("parameter " + name + ": '" + value + "' is not an integer");
+      p.value = static_cast<int>(x);
+    }
     msg.ints.push_back(p);
   }
   else if (d->type == "double")

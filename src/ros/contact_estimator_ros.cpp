@@ -30,7 +30,8 @@ ContactEstimatorRos::ContactEstimatorRos(ros::NodeHandle nh, ros::NodeHandle pnh
   updater_.add("contact models", this, &ContactEstimatorRos::diagnoseModels);
   window_start_ = ros::WallTime::now();
 
-  // Numbers that YAML 1.1 read as text would otherwise be dropped by the server in silence.
+  // Numbers that YAML 1.1 read as text, enum names, values out of range: the server would drop or clamp them in
+  // silence.
   bool all_repaired = true;
   for (const std::string& line : repairTextParameters(pnh_, all_repaired))
   {

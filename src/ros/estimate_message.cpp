@@ -13,11 +13,11 @@ static_assert(ContactEstimate::BRUSH_FLAG_STANDSTILL == brush_flags::kStandstill
               ContactEstimate::BRUSH_FLAG_LINEAR_SATURATED == brush_flags::kLinearSaturated &&
               ContactEstimate::BRUSH_FLAG_SUBSTEPS_TRUNCATED == brush_flags::kSubstepsTruncated &&
               ContactEstimate::BRUSH_FLAG_ACCURACY_NOT_MET == brush_flags::kAccuracyNotMet);
-static_assert(ContactEstimate::BRUSH_OFF == static_cast<int>(BrushChoice::Off) &&
-              ContactEstimate::BRUSH_LINEAR == static_cast<int>(BrushChoice::Linear) &&
-              ContactEstimate::BRUSH_STEADY == static_cast<int>(BrushChoice::Steady) &&
-              ContactEstimate::BRUSH_TRANSIENT == static_cast<int>(BrushChoice::Transient) &&
-              ContactEstimate::BRUSH_AUTO == static_cast<int>(BrushChoice::Auto));
+static_assert(ContactEstimate::BRUSH_OFF == static_cast<int>(BrushModelKind::Off) &&
+              ContactEstimate::BRUSH_LINEAR == static_cast<int>(BrushModelKind::Linear) &&
+              ContactEstimate::BRUSH_STEADY == static_cast<int>(BrushModelKind::Steady) &&
+              ContactEstimate::BRUSH_TRANSIENT == static_cast<int>(BrushModelKind::Transient) &&
+              ContactEstimate::BRUSH_AUTO == static_cast<int>(BrushModelKind::Auto));
 static_assert(RollingResistance::FLAG_UNDERDAMPED == cylinder_flags::kUnderdamped &&
               RollingResistance::FLAG_SELF_INCONSISTENT == cylinder_flags::kSelfInconsistent &&
               RollingResistance::FLAG_NO_STEADY_STATE == cylinder_flags::kNoSteadyState &&
@@ -29,10 +29,10 @@ static_assert(RollingResistance::REGIME_STATIC == static_cast<int>(CylinderRegim
               RollingResistance::REGIME_CONTACT_PATCH == static_cast<int>(CylinderRegime::ContactPatch) &&
               RollingResistance::REGIME_POINT_CONTACT == static_cast<int>(CylinderRegime::PointContact) &&
               RollingResistance::REGIME_NO_STEADY_STATE == static_cast<int>(CylinderRegime::NoSteadyState));
-static_assert(RollingResistance::MODEL_OFF == static_cast<int>(RollingResistanceChoice::Off) &&
-              RollingResistance::MODEL_EXACT == static_cast<int>(RollingResistanceChoice::Exact) &&
-              RollingResistance::MODEL_EXPANSION == static_cast<int>(RollingResistanceChoice::Expansion) &&
-              RollingResistance::MODEL_TABLE == static_cast<int>(RollingResistanceChoice::Table));
+static_assert(RollingResistance::MODEL_OFF == static_cast<int>(CylinderModelKind::Off) &&
+              RollingResistance::MODEL_EXACT == static_cast<int>(CylinderModelKind::Exact) &&
+              RollingResistance::MODEL_EXPANSION == static_cast<int>(CylinderModelKind::Expansion) &&
+              RollingResistance::MODEL_TABLE == static_cast<int>(CylinderModelKind::Table));
 
 void toMessage(const ContactEstimateData& e, ContactEstimate& m)
 {
@@ -69,7 +69,7 @@ void toMessage(const ContactEstimateData& e, ContactEstimate& m)
   m.friction = e.friction;
   m.brush_power = e.brush_power;
   m.brush_flags = e.brush.flags;
-  m.brush_valid = e.brush_model == BrushChoice::Off || e.brush.valid();
+  m.brush_valid = e.brush_model == BrushModelKind::Off || e.brush.valid();
 
   RollingResistance& r = m.rolling_resistance;
   const CylinderState& c = e.rolling_resistance;
@@ -83,7 +83,7 @@ void toMessage(const ContactEstimateData& e, ContactEstimate& m)
   r.mu_roll = c.mu_roll;
   r.regime = static_cast<uint8_t>(c.regime);
   r.flags = c.flags;
-  r.valid = e.rolling_resistance_model == RollingResistanceChoice::Off || c.valid();
+  r.valid = e.rolling_resistance_model == CylinderModelKind::Off || c.valid();
   m.rolling_resistance_power = e.rolling_resistance_power;
 
   m.valid = e.valid();

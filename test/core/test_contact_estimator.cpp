@@ -19,11 +19,11 @@ namespace sphere_contact_estimator
 {
 namespace
 {
-EstimatorSettings settings(BrushChoice brush = BrushChoice::Steady)
+EstimatorSettings settings(BrushModelKind brush = BrushModelKind::Steady)
 {
   EstimatorSettings s;
   s.brush_model = brush;
-  s.rolling_resistance_model = RollingResistanceChoice::Exact;
+  s.rolling_resistance_model = CylinderModelKind::Exact;
   s.standstill_speed = 0.01;
   s.turn_rate_time_constant = 0.0;
   return s;
@@ -104,7 +104,7 @@ TEST(ContactEstimator, DissipatedPower)
   // Pure spin at standstill, once every bristle slides: M_z = -sgn(omega_z) 8/15 mu F_z a for the parabolic
   // pressure (the integral of mu q_z r over the disc), so the patch takes 8/15 mu F_z a |omega_z|.
   {
-    EstimatorSettings s = settings(BrushChoice::Transient);
+    EstimatorSettings s = settings(BrushModelKind::Transient);
     s.resolution = 32;
     ContactEstimator e(s);
     const double omega_z = 5.0, dt = 1e-3;
@@ -134,10 +134,10 @@ TEST(ContactEstimator, AutoTurnsItsTransientStateWithTheFrame)
 {
   // Spinning at standstill (auto runs its transient model), then rolling off at a new heading: the frame is
   // re-initialised and the bristle state must turn with it, exactly as in the transient model itself.
-  EstimatorSettings automatic = settings(BrushChoice::Auto);
+  EstimatorSettings automatic = settings(BrushModelKind::Auto);
   automatic.accuracy_target = 0.05;
   const BrushAuto probe(automatic.brushParameters());
-  EstimatorSettings transient = settings(BrushChoice::Transient);
+  EstimatorSettings transient = settings(BrushModelKind::Transient);
   transient.resolution = probe.transientResolution();
   ContactEstimator a(automatic), t(transient);
   const double dt = 1e-3;
@@ -151,7 +151,7 @@ TEST(ContactEstimator, AutoTurnsItsTransientStateWithTheFrame)
   const ContactEstimateData* dt_ = t.update(rolling(i * dt, 0.5, 2.0, 0.0, 0.01, 2.0));
   ASSERT_TRUE(da && dt_);
   ASSERT_TRUE(da->flags & estimate_flags::kHeadingReset);
-  ASSERT_EQ(da->brush_model_used, BrushChoice::Transient);
+  ASSERT_EQ(da->brush_model_used, BrushModelKind::Transient);
   const double scale = transient.friction * transient.verticalLoad();
   EXPECT_GT(std::hypot(dt_->brush.F_x, dt_->brush.F_y), 0.05 * scale);  // a state worth turning
   EXPECT_NEAR(da->brush.F_x, dt_->brush.F_x, 1e-9 * scale);
@@ -180,7 +180,7 @@ TEST(ContactEstimator, TurnRateFromTheHeading)
 
 TEST(ContactEstimator, TimeHandling)
 {
-  ContactEstimator e(settings(BrushChoice::Transient));
+  ContactEstimator e(settings(BrushModelKind::Transient));
   ASSERT_TRUE(e.update(rolling(10.0, 1.0, 0.0, 0.05, 0.0, 0.0)));
   const ContactEstimateData* d = e.update(rolling(10.01, 1.0, 0.0, 0.05, 0.0, 0.0));
   EXPECT_NEAR(d->dt, 0.01, 1e-12);
@@ -206,7 +206,7 @@ TEST(ContactEstimator, TimeHandling)
 // forces from the linear model. Impossible inputs are rejected, changing nothing.
 TEST(ContactEstimator, ImpossibleSpinIsRejected)
 {
-  ContactEstimator e(settings(BrushChoice::Linear));
+  ContactEstimator e(settings(BrushModelKind::Linear));
   EstimatorInput in;
   in.stamp = 0.0;
   in.omega = Eigen::Vector3d(0.0, 0.02, -2.2345e307);
@@ -219,7 +219,7 @@ TEST(ContactEstimator, ImpossibleSpinIsRejected)
   EXPECT_EQ(d->flags & estimate_flags::kDuplicateStamp, 0u);  // the rejected message left no stamp behind
 
   // a slip past the range of a double under a tiny standstill speed
-  EstimatorSettings s = settings(BrushChoice::Linear);
+  EstimatorSettings s = settings(BrushModelKind::Linear);
   s.standstill_speed = 1e-300;
   ContactEstimator f(s);
   in.omega = Eigen::Vector3d(0.0, 1e-298, 0.0);
@@ -234,7 +234,7 @@ TEST(ContactEstimator, ImpossibleSpinIsRejected)
 // Found by fuzz_estimator: a turn over a denormal step (5.9e-315 s) made the turn rate infinite.
 TEST(ContactEstimator, TurnOverADenormalStepIsADuplicate)
 {
-  EstimatorSettings s = settings(BrushChoice::Transient);
+  EstimatorSettings s = settings(BrushModelKind::Transient);
   s.tilt = true;
   ContactEstimator e(s);
   EstimatorInput in;
@@ -254,7 +254,7 @@ TEST(ContactEstimator, TurnOverADenormalStepIsADuplicate)
 
 TEST(ContactEstimator, StandstillHoldsTheFrame)
 {
-  ContactEstimator e(settings(BrushChoice::Transient));
+  ContactEstimator e(settings(BrushModelKind::Transient));
   e.update(rolling(0.0, 1.0, 1.0, 0.0, 0.0, 0.0));
   const ContactEstimateData* d = e.update(rolling(0.01, 0.0, 1.0, 0.0, 0.0, 3.0));  // spin in place
   EXPECT_TRUE(d->flags & estimate_flags::kStandstill);
@@ -275,7 +275,7 @@ TEST(ContactEstimator, StandstillHoldsTheFrame)
 
 TEST(ContactEstimator, BristlesForDrawing)
 {
-  for (BrushChoice model : { BrushChoice::Steady, BrushChoice::Transient })
+  for (BrushModelKind model : { BrushModelKind::Steady, BrushModelKind::Transient })
   {
     ContactEstimator e(settings(model));
     for (int i = 0; i < 50; ++i)
@@ -296,7 +296,7 @@ TEST(ContactEstimator, BristlesForDrawing)
 
 TEST(ContactEstimator, BadInputChangesNothing)
 {
-  ContactEstimator e(settings(BrushChoice::Transient));
+  ContactEstimator e(settings(BrushModelKind::Transient));
   e.update(rolling(0.0, 1.0, 0.0, 0.05, 0.0, 0.0));
   const double before = e.update(rolling(0.01, 1.0, 0.0, 0.05, 0.0, 0.0))->brush.F_x;
   EstimatorInput bad = rolling(0.02, 1.0, 0.0, 0.05, 0.0, 0.0);
@@ -315,23 +315,23 @@ TEST(ContactEstimator, BadInputChangesNothing)
 
 TEST(ContactEstimator, ConfigureKeepsOrRejects)
 {
-  ContactEstimator e(settings(BrushChoice::Transient));
+  ContactEstimator e(settings(BrushModelKind::Transient));
   for (int i = 0; i < 20; ++i)
     e.update(rolling(0.01 * i, 1.0, 0.0, 0.01, 0.0, 0.0));
   const double before = e.update(rolling(0.2, 1.0, 0.0, 0.01, 0.0, 0.0))->brush.F_x;
-  EstimatorSettings s = settings(BrushChoice::Transient);
+  EstimatorSettings s = settings(BrushModelKind::Transient);
   s.friction = -1.0;
   EXPECT_THROW(e.configure(s), std::invalid_argument);
   EXPECT_EQ(e.settings().friction, settings().friction);  // kept
-  s = settings(BrushChoice::Transient);
+  s = settings(BrushModelKind::Transient);
   s.friction = 0.81;  // a retune keeps the bristles: no jump
   e.configure(s);
   EXPECT_NEAR(e.update(rolling(0.2, 1.0, 0.0, 0.01, 0.0, 0.0))->brush.F_x, before, 1e-9 * std::abs(before));
   s.resolution = 20;  // a new lattice: fresh bristles
   e.configure(s);
   EXPECT_EQ(e.update(rolling(0.2, 1.0, 0.0, 0.01, 0.0, 0.0))->brush.F_x, 0.0);
-  s.brush_model = BrushChoice::Off;
-  s.rolling_resistance_model = RollingResistanceChoice::Off;
+  s.brush_model = BrushModelKind::Off;
+  s.rolling_resistance_model = CylinderModelKind::Off;
   e.configure(s);
   const ContactEstimateData* d = e.update(rolling(0.21, 1.0, 0.0, 0.01, 0.0, 0.0));
   EXPECT_EQ(d->brush.F_x, 0.0);

@@ -166,11 +166,35 @@ TEST(ParameterText, NumbersReadAsTextAreRepaired)
     EXPECT_FALSE(all_repaired) << text;
     EXPECT_FALSE(pnh.hasParam("resolution")) << text;
   }
-  pnh.setParam("resolution", std::string("2147483647"));
+  pnh.setParam("resolution", std::string("1024"));  // the .cfg's largest
   sce::repairTextParameters(pnh, all_repaired);
   EXPECT_TRUE(all_repaired);
   EXPECT_TRUE(pnh.getParam("resolution", resolution));
-  EXPECT_EQ(resolution, 2147483647);
+  EXPECT_EQ(resolution, 1024);
+  // enum names; numbers the server would clamp or take for an enum without a word are refused, naming the valid ones
+  pnh.setParam("brush_model", std::string("steady"));
+  pnh.setParam("rolling_resistance_model", std::string("off"));
+  sce::repairTextParameters(pnh, all_repaired);
+  EXPECT_TRUE(all_repaired);
+  int model = -1;
+  EXPECT_TRUE(pnh.getParam("brush_model", model));
+  EXPECT_EQ(model, 2);
+  EXPECT_TRUE(pnh.getParam("rolling_resistance_model", model));
+  EXPECT_EQ(model, 0);
+  pnh.setParam("brush_model", 7);
+  pnh.setParam("resolution", 100000);
+  pnh.setParam("friction", -1.0);
+  const std::vector<std::string> refused = sce::repairTextParameters(pnh, all_repaired);
+  EXPECT_FALSE(all_repaired);
+  ASSERT_EQ(refused.size(), 3u);
+  std::string all;
+  for (const std::string& line : refused)
+    all += line + "\n";
+  EXPECT_NE(all.find("off (0), linear (1), steady (2), transient (3), auto (4)"), std::string::npos) << all;
+  EXPECT_NE(all.find("outside [2, 1024]"), std::string::npos) << all;
+  EXPECT_FALSE(pnh.hasParam("brush_model"));
+  EXPECT_FALSE(pnh.hasParam("resolution"));
+  EXPECT_FALSE(pnh.hasParam("friction"));
   pnh.deleteParam("");
 }
 

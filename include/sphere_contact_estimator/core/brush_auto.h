@@ -48,8 +48,10 @@ public:
   BrushModelKind kind() const override { return BrushModelKind::Auto; }
 
   /// The model that produced the last update, and its resolution (0 for linear and steady).
-  BrushModelKind lastModel() const { return last_model_; }
-  int lastResolution() const { return last_resolution_; }
+  BrushModelKind lastModel() const override { return last_model_; }
+  int lastResolution() const override { return last_resolution_; }
+  /// The transient lattice's bristles when it gave the answer, else the steady field of the last slips.
+  void visitBristles(const BristleVisitor& visit) const override;
   /// Estimated cost of all updates so far [ns] (per-evaluation costs measured in docs/benchmarks.md).
   double cost() const { return cost_; }
   /// The resolution its transient model runs at now.
@@ -89,6 +91,7 @@ private:
   BrushForces offset_;  // carried difference at the last switch
   bool answered_ = false;  // an answer since the last reset: switches are then smoothed
   BrushModelKind last_model_ = BrushModelKind::Linear;
+  Slips last_slips_;  // of the last update, for visitBristles
   int last_resolution_ = 0;
   double cost_ = 0.0;
 };

@@ -33,6 +33,10 @@ class BrushSteady : public BrushSlipModel
 public:
   explicit BrushSteady(const BrushParameters& parameters);
   BrushModelKind kind() const override { return BrushModelKind::Steady; }
+  /// The field of the last update's slips on kVisitPaths x kVisitPoints points.
+  void visitBristles(const BristleVisitor& visit) const override;
+  /// The same for given slips (as update() takes them).
+  void visitBristles(const Slips& slips, const BristleVisitor& visit) const;
 
   /// Forces to the parameters' accuracy target; phi_gamma and phi_psi are used with tilt on only.
   BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi) const override;

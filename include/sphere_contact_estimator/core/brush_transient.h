@@ -51,6 +51,17 @@ public:
   BrushForces update(const ContactKinematics& kinematics, double dt) override;
   void reset() override;
   BrushModelKind kind() const override { return BrushModelKind::Transient; }
+  /// setParameters(); always true (the state is kept or reset, as setParameters says).
+  bool retune(const BrushParameters& parameters) override
+  {
+    setParameters(parameters);
+    return true;
+  }
+  int lastResolution() const override { return p_.resolution; }
+  void visitBristles(const BristleVisitor& visit) const override
+  {
+    forEachBristle([&](const Eigen::Vector2d& x, const Eigen::Vector2d&, bool sliding) { visit(x, sliding); });
+  }
 
   /// Forces of the current bristle state, without advancing.
   BrushForces forces() const;

@@ -54,8 +54,8 @@ struct ContactEstimateData
   double patch_radius = 0.0;  ///< a [m], of the current settings (also with the brush model off)
   double load = 0.0;          ///< F_z [N], of the current settings (also with the brush model off)
 
-  BrushChoice brush_model = BrushChoice::Off;       ///< as configured
-  BrushChoice brush_model_used = BrushChoice::Off;  ///< the model that ran (differs under auto)
+  BrushModelKind brush_model = BrushModelKind::Off;       ///< as configured
+  BrushModelKind brush_model_used = BrushModelKind::Off;  ///< the model that ran (differs under auto)
   int brush_resolution = 0;                         ///< the transient model's resolution (0: linear, steady, off)
   BrushForces brush;          ///< F_x, F_y [N], M_z [N m] on the sphere, ROS contact frame
   double friction = 0.0;      ///< mu in force (0 with the brush model off)
@@ -65,7 +65,7 @@ struct ContactEstimateData
   double brush_power = 0.0;
   double rolling_resistance_power = 0.0;   ///< F_R L V_r [W], dissipated by the viscous surface (eq. 17)
 
-  RollingResistanceChoice rolling_resistance_model = RollingResistanceChoice::Off;
+  CylinderModelKind rolling_resistance_model = CylinderModelKind::Off;
   CylinderState rolling_resistance;  ///< per unit length, as CylinderModel::solve returns it
   double rolling_resistance_force = 0.0;   ///< F_R L [N], against the rolling direction
   double rolling_resistance_torque = 0.0;  ///< R F_R L [N m]
@@ -119,6 +119,14 @@ public:
 
 private:
   void adopt();
+  // the phases of update(): refuse impossible input, advance the clock (dt and the time flags), follow the
+  // contact frame's heading (turn rate), the kinematics in the paper frame (slips into the estimate), the models
+  bool acceptable(const EstimatorInput& in, const Eigen::Vector2d& V_r, double speed) const;
+  double advanceClock(double stamp, std::uint32_t& flags);
+  void followHeading(const Eigen::Vector2d& V_r, double speed, double dt, bool first, std::uint32_t& flags);
+  ContactKinematics contactKinematics(const EstimatorInput& in, double psi_dot, ContactEstimateData& out) const;
+  void runBrush(const ContactKinematics& kin, double dt, double omega_z, ContactEstimateData& out);
+  void runRollingResistance(double speed, ContactEstimateData& out) const;
   bool slipsRepresentable(const EstimatorInput& in, const Eigen::Vector2d& V_r, double speed) const;
   void rebuildBrush(const EstimatorSettings& next);
   void rebuildCylinder(const EstimatorSettings& next);
@@ -134,7 +142,6 @@ private:
   bool was_rolling_ = false;
   double heading_ = 0.0;
   double turn_rate_ = 0.0;
-  Slips last_slips_;  // for visitBristles() with the steady model
 };
 
 }  // namespace sphere_contact_estimator

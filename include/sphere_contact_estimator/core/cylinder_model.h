@@ -1,6 +1,7 @@
 #pragma once
 
 // STL
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string_view>
@@ -13,11 +14,13 @@
 namespace sphere_contact_estimator
 {
 /// The three ways to evaluate the steady rolling state of the cylinder.
-enum class CylinderModelKind
+/// The rolling-resistance models, and none; the numbers are those of the node's rolling_resistance_model.
+enum class CylinderModelKind : std::uint8_t
 {
-  Exact,      ///< eq. 18 solved by a bracketed root finder (CylinderExact)
-  Expansion,  ///< small-velocity expansions, eqs. 21, 23, 24, 27 (CylinderExpansion)
-  Table,      ///< exact solution tabulated on construction and interpolated (CylinderTable)
+  Off = 0,        ///< no rolling-resistance model
+  Exact = 1,      ///< eq. 18 solved by a bracketed root finder (CylinderExact)
+  Expansion = 2,  ///< small-velocity expansions, eqs. 21, 23, 24, 27 (CylinderExpansion)
+  Table = 3,      ///< exact solution tabulated on construction and interpolated (CylinderTable)
 };
 
 const char* toString(CylinderModelKind kind);
@@ -58,6 +61,7 @@ protected:
 };
 
 /// Creates a model of the given kind.
+/// The model of that kind (nullptr for Off). Throws std::invalid_argument for invalid parameters.
 std::unique_ptr<CylinderModel> makeCylinderModel(CylinderModelKind kind, const CylinderParameters& parameters);
 
 }  // namespace sphere_contact_estimator

@@ -32,7 +32,7 @@ public:
   double peakUtilisation() const { return peak_utilisation_; }  ///< largest |F_t| / (mu F_z) [-]
   double peakBristleUtilisation() const { return peak_bristle_; }  ///< largest |q| / (mu q_z) [-]
   double peakRollingResistance() const { return peak_rr_; }  ///< largest F_R L [N]
-  /// Estimates per brush model that ran (indexed by BrushChoice: off, linear, steady, transient).
+  /// Estimates per brush model that ran (indexed by BrushModelKind: off, linear, steady, transient).
   const std::array<std::uint64_t, 4>& brushModelsUsed() const { return models_used_; }
   std::uint64_t invalid() const { return invalid_; }       ///< estimates outside a model's assumptions
   std::uint64_t resets() const { return resets_; }         ///< time jumps and gaps
