@@ -25,13 +25,13 @@
 // Package
 #include "brush_brute_force.h"
 #include "brush_marching.h"
-#include "sphere_contact_estimator/core/brush_auto.h"
-#include "sphere_contact_estimator/core/brush_linear.h"
-#include "sphere_contact_estimator/core/brush_steady.h"
-#include "sphere_contact_estimator/core/brush_transient.h"
-#include "sphere_contact_estimator/core/cylinder_exact.h"
-#include "sphere_contact_estimator/core/cylinder_expansion.h"
-#include "sphere_contact_estimator/core/cylinder_table.h"
+#include "sphere_contact_estimator/core/brush/brush_auto.h"
+#include "sphere_contact_estimator/core/brush/brush_linear.h"
+#include "sphere_contact_estimator/core/brush/brush_steady.h"
+#include "sphere_contact_estimator/core/brush/brush_transient.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_exact.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_expansion.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_table.h"
 
 namespace sce = sphere_contact_estimator;
 

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "fuzz_input.h"
-#include "sphere_contact_estimator/core/brush_model.h"
+#include "sphere_contact_estimator/core/brush/brush_model.h"
 
 using namespace sphere_contact_estimator;
 

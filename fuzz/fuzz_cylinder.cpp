@@ -4,8 +4,8 @@
 #include <stdexcept>
 
 #include "fuzz_input.h"
-#include "sphere_contact_estimator/core/cylinder_exact.h"
-#include "sphere_contact_estimator/core/cylinder_expansion.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_exact.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_expansion.h"
 
 using namespace sphere_contact_estimator;
 

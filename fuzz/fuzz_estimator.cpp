@@ -4,7 +4,7 @@
 #include <cstdlib>
 
 #include "fuzz_input.h"
-#include "sphere_contact_estimator/core/contact_estimator.h"
+#include "sphere_contact_estimator/core/estimator/contact_estimator.h"
 
 using namespace sphere_contact_estimator;
 

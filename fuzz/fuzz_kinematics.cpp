@@ -3,7 +3,7 @@
 #include <cstdlib>
 
 #include "fuzz_input.h"
-#include "sphere_contact_estimator/core/contact_kinematics.h"
+#include "sphere_contact_estimator/core/brush/contact_kinematics.h"
 
 using namespace sphere_contact_estimator;
 

@@ -10,11 +10,11 @@
 
 // Package
 #include "cli/json_output.h"
-#include "sphere_contact_estimator/core/brush_auto.h"
-#include "sphere_contact_estimator/core/brush_model.h"
-#include "sphere_contact_estimator/core/brush_steady.h"
-#include "sphere_contact_estimator/core/brush_transient.h"
-#include "sphere_contact_estimator/core/contact_kinematics.h"
+#include "sphere_contact_estimator/core/brush/brush_auto.h"
+#include "sphere_contact_estimator/core/brush/brush_model.h"
+#include "sphere_contact_estimator/core/brush/brush_steady.h"
+#include "sphere_contact_estimator/core/brush/brush_transient.h"
+#include "sphere_contact_estimator/core/brush/contact_kinematics.h"
 
 namespace sphere_contact_estimator::cli
 {

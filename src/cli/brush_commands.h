@@ -10,7 +10,7 @@
 #include <CLI/CLI.hpp>
 
 // Package
-#include "sphere_contact_estimator/core/brush_parameters.h"
+#include "sphere_contact_estimator/core/brush/brush_parameters.h"
 
 namespace sphere_contact_estimator::cli
 {

@@ -8,8 +8,8 @@
 
 // Package
 #include "cli/json_output.h"
-#include "sphere_contact_estimator/core/cylinder_model.h"
-#include "sphere_contact_estimator/core/cylinder_peak.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_model.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_peak.h"
 
 namespace sphere_contact_estimator::cli
 {

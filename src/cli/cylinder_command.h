@@ -10,8 +10,8 @@
 #include <CLI/CLI.hpp>
 
 // Package
-#include "sphere_contact_estimator/core/cylinder_parameters.h"
-#include "sphere_contact_estimator/core/cylinder_table.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_parameters.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_table.h"
 
 namespace sphere_contact_estimator::cli
 {

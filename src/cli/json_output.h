@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 
 // Package
-#include "sphere_contact_estimator/core/cylinder_model.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_model.h"
 
 namespace sphere_contact_estimator::cli
 {

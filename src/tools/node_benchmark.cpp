@@ -27,7 +27,7 @@
 #include "sphere_contact_estimator/ContactEstimate.h"
 #include "sphere_contact_estimator/ContactEstimatorConfig.h"
 #include "sphere_contact_estimator/ros/bag_analyzer.h"
-#include "sphere_contact_estimator/core/scenario.h"
+#include "sphere_contact_estimator/core/estimator/scenario.h"
 
 namespace sce = sphere_contact_estimator;
 

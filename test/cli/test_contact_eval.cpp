@@ -12,8 +12,8 @@
 // Package
 #include "../command_outcome.h"
 #include "../core/cylinder_test_support.h"
-#include "sphere_contact_estimator/core/cylinder_exact.h"
-#include "sphere_contact_estimator/core/cylinder_expansion.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_exact.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_expansion.h"
 
 namespace sphere_contact_estimator
 {

@@ -7,9 +7,9 @@
 #include <Eigen/Core>
 
 // Package
-#include "sphere_contact_estimator/core/brush_closed_form.h"
-#include "sphere_contact_estimator/core/brush_forces.h"
-#include "sphere_contact_estimator/core/brush_parameters.h"
+#include "brush_closed_form.h"
+#include "sphere_contact_estimator/core/brush/brush_forces.h"
+#include "sphere_contact_estimator/core/brush/brush_parameters.h"
 
 namespace sphere_contact_estimator::test
 {

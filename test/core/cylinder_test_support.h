@@ -4,7 +4,7 @@
 #include <vector>
 
 // Package
-#include "sphere_contact_estimator/core/cylinder_parameters.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_parameters.h"
 
 namespace sphere_contact_estimator::test
 {

@@ -12,8 +12,8 @@
 
 // Package
 #include "brush_test_support.h"
-#include "sphere_contact_estimator/core/brush_auto.h"
-#include "sphere_contact_estimator/core/scenario.h"
+#include "sphere_contact_estimator/core/brush/brush_auto.h"
+#include "sphere_contact_estimator/core/estimator/scenario.h"
 
 namespace sphere_contact_estimator
 {

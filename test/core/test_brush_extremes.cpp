@@ -11,8 +11,8 @@
 
 // Package
 #include "brush_test_support.h"
-#include "sphere_contact_estimator/core/brush_auto.h"
-#include "sphere_contact_estimator/core/brush_transient.h"
+#include "sphere_contact_estimator/core/brush/brush_auto.h"
+#include "sphere_contact_estimator/core/brush/brush_transient.h"
 
 namespace sphere_contact_estimator
 {

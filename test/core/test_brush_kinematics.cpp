@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 // Package
-#include "sphere_contact_estimator/core/contact_kinematics.h"
+#include "sphere_contact_estimator/core/brush/contact_kinematics.h"
 
 namespace sphere_contact_estimator
 {

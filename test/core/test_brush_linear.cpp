@@ -8,9 +8,9 @@
 
 // Package
 #include "brush_test_support.h"
-#include "sphere_contact_estimator/core/brush_linear.h"
-#include "sphere_contact_estimator/core/brush_steady.h"
-#include "sphere_contact_estimator/core/brush_transient.h"
+#include "sphere_contact_estimator/core/brush/brush_linear.h"
+#include "sphere_contact_estimator/core/brush/brush_steady.h"
+#include "sphere_contact_estimator/core/brush/brush_transient.h"
 
 namespace sphere_contact_estimator
 {

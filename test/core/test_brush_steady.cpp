@@ -15,10 +15,10 @@
 #include "brush_brute_force.h"
 #include "brush_marching.h"
 #include "brush_test_support.h"
-#include "sphere_contact_estimator/core/brush_linear.h"
-#include "sphere_contact_estimator/core/brush_steady.h"
-#include "sphere_contact_estimator/core/friction_cap.h"
-#include "sphere_contact_estimator/core/patch_integral.h"
+#include "sphere_contact_estimator/core/brush/brush_linear.h"
+#include "sphere_contact_estimator/core/brush/brush_steady.h"
+#include "sphere_contact_estimator/core/brush/friction_cap.h"
+#include "sphere_contact_estimator/core/brush/patch_integral.h"
 
 namespace sphere_contact_estimator
 {

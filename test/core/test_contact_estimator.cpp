@@ -10,10 +10,10 @@
 #include <gtest/gtest.h>
 
 // Package
-#include "sphere_contact_estimator/core/brush_auto.h"
-#include "sphere_contact_estimator/core/brush_steady.h"
-#include "sphere_contact_estimator/core/contact_estimator.h"
-#include "sphere_contact_estimator/core/cylinder_exact.h"
+#include "sphere_contact_estimator/core/brush/brush_auto.h"
+#include "sphere_contact_estimator/core/brush/brush_steady.h"
+#include "sphere_contact_estimator/core/estimator/contact_estimator.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_exact.h"
 
 namespace sphere_contact_estimator
 {

@@ -12,8 +12,8 @@
 
 // Package
 #include "cylinder_test_support.h"
-#include "sphere_contact_estimator/core/cylinder_contact.h"
-#include "sphere_contact_estimator/core/cylinder_exact.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_contact.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_exact.h"
 
 namespace sphere_contact_estimator
 {

@@ -8,9 +8,9 @@
 
 // Package
 #include "cylinder_test_support.h"
-#include "sphere_contact_estimator/core/cylinder_exact.h"
-#include "sphere_contact_estimator/core/cylinder_expansion.h"
-#include "sphere_contact_estimator/core/cylinder_peak.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_exact.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_expansion.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_peak.h"
 
 namespace sphere_contact_estimator
 {

@@ -9,8 +9,8 @@
 
 // Package
 #include "cylinder_test_support.h"
-#include "sphere_contact_estimator/core/cylinder_exact.h"
-#include "sphere_contact_estimator/core/cylinder_table.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_exact.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_table.h"
 
 namespace sphere_contact_estimator
 {

@@ -12,8 +12,8 @@
 #include <gtest/gtest.h>
 
 // Package
-#include "sphere_contact_estimator/core/polynomial_roots.h"
-#include "sphere_contact_estimator/core/quadrature_rules.h"
+#include "sphere_contact_estimator/core/numerics/polynomial_roots.h"
+#include "sphere_contact_estimator/core/numerics/quadrature_rules.h"
 
 namespace sphere_contact_estimator::numerics
 {

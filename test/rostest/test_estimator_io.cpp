@@ -25,7 +25,7 @@
 // Package
 #include "sphere_contact_estimator/ContactEstimate.h"
 #include "sphere_contact_estimator/ContactEstimatorConfig.h"
-#include "sphere_contact_estimator/core/contact_estimator.h"
+#include "sphere_contact_estimator/core/estimator/contact_estimator.h"
 #include "sphere_contact_estimator/ros/config_settings.h"
 #include "sphere_contact_estimator/ros/parameter_text.h"
 

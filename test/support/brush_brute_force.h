@@ -4,8 +4,8 @@
 #include <Eigen/Core>
 
 // Package
-#include "sphere_contact_estimator/core/brush_forces.h"
-#include "sphere_contact_estimator/core/brush_parameters.h"
+#include "sphere_contact_estimator/core/brush/brush_forces.h"
+#include "sphere_contact_estimator/core/brush/brush_parameters.h"
 
 namespace sphere_contact_estimator::test
 {

@@ -4,7 +4,7 @@
 #include <functional>
 
 // Package
-#include "sphere_contact_estimator/core/brush_model.h"
+#include "sphere_contact_estimator/core/brush/brush_model.h"
 
 namespace sphere_contact_estimator::test
 {

@@ -9,7 +9,7 @@
 
 // Package
 #include "sphere_contact_estimator/ContactEstimatorConfig.h"
-#include "sphere_contact_estimator/core/run_summary.h"
+#include "sphere_contact_estimator/core/estimator/run_summary.h"
 
 namespace sphere_contact_estimator
 {

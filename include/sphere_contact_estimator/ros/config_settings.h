@@ -2,7 +2,7 @@
 
 // Package
 #include "sphere_contact_estimator/ContactEstimatorConfig.h"
-#include "sphere_contact_estimator/core/estimator_settings.h"
+#include "sphere_contact_estimator/core/estimator/estimator_settings.h"
 
 namespace sphere_contact_estimator
 {

@@ -26,7 +26,7 @@
 // Package
 #include "sphere_contact_estimator/ContactEstimate.h"
 #include "sphere_contact_estimator/ContactEstimatorConfig.h"
-#include "sphere_contact_estimator/core/contact_estimator.h"
+#include "sphere_contact_estimator/core/estimator/contact_estimator.h"
 #include "sphere_contact_estimator/ros/message_pool.h"
 #include "sphere_contact_estimator/ros/odometry_estimator.h"
 

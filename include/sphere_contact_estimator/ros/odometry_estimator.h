@@ -16,7 +16,7 @@
 // Package
 #include "sphere_contact_estimator/ContactEstimate.h"
 #include "sphere_contact_estimator/ContactEstimatorConfig.h"
-#include "sphere_contact_estimator/core/contact_estimator.h"
+#include "sphere_contact_estimator/core/estimator/contact_estimator.h"
 
 namespace sphere_contact_estimator
 {

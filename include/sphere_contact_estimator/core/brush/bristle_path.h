@@ -1,0 +1,124 @@
+#pragma once
+
+// STL
+#include <array>
+#include <complex>
+#include <cstdint>
+
+// Package
+#include "sphere_contact_estimator/core/brush/brush_parameters.h"
+
+namespace sphere_contact_estimator
+{
+/// The steady bristle problem of Romano et al. (Sects. 3, 4 and 6) in the frame with epsilon = (0, 1),
+/// made dimensionless: positions and travel in units of the patch radius a, deflections in units of the
+/// largest friction bound mu q_z(0) / k (so that the bound is f(r^2) <= 1), complex numbers for plane vectors
+/// (z = x + i y; the skew tensor A_phi of eq. 12c is multiplication by i phi).
+///
+/// Along a characteristic the root moves as dz/dtau = -1 + i omega z (eqs. 15b, 35b: a straight line, or a
+/// circle about the tilting centre (0, -1/omega)), and an adhering bristle as du/dtau = w(z) + i kappa u
+/// (eqs. 11, 32) with the drive w(z) = sigma + i phi z, starting undeformed at the leading edge (eq. 8).
+/// Limited friction (eq. 4): |u| <= f(r^2); a sliding bristle has |u| = f along the rigid sliding field,
+/// u = f w / |w| (Sect. 6).
+struct BristleField
+{
+  std::complex<double> sigma;  ///< slip sigma / beta, beta = mu q_z(0) / (k a) [-]
+  double phi = 0.0;            ///< spin phi a / beta [-]
+  double kappa = 0.0;          ///< turn coupling phi_psi a of eq. 32 (0 in the Sect. 3 formulation) [-]
+  double omega = 0.0;          ///< turn of the roots per unit travel, -phi_gamma a (eq. 39b); 0: straight paths
+  PressureDistribution pressure = PressureDistribution::Parabolic;
+
+  /// The drive w(z) = sigma + i phi z, which is also the rigid sliding field.
+  std::complex<double> drive(std::complex<double> z) const { return sigma + std::complex<double>(-phi * z.imag(), phi * z.real()); }
+  /// The bound f(r^2) = mu q_z / (mu q_z(0)): 1 - r^2, sqrt(1 - r^2) or 1 on the patch, 0 off it.
+  double bound(double r2) const;
+  /// Where the drive vanishes, the spin pole i sigma / phi (the sliding direction turns about it); phi != 0.
+  std::complex<double> pole() const { return std::complex<double>(-sigma.imag(), sigma.real()) / phi; }
+  /// Tilting centre's y (eq. 36 with epsilon = (0, 1)), -1 / omega; only with omega != 0.
+  double tiltingCentre() const { return -1.0 / omega; }
+};
+
+/// The dimensionless problem of a brush at these slips (frame with epsilon = (0, 1); phi_gamma and phi_psi used
+/// with p.tilt only; tilt radii beyond 1e12 a count as straight). False when there is nothing to integrate: no
+/// friction or no load.
+bool makeBristleField(const BrushParameters& p, const std::complex<double>& sigma, double phi, double phi_gamma,
+                      double phi_psi, BristleField& out);
+
+/// The bound at the patch centre, mu q_z(0) / k [m]: the unit of the field's deflections.
+double deflectionUnit(const BrushParameters& p);
+
+/// One characteristic, identified by where it crosses the y axis: y0 = sin(theta). Straight paths are the
+/// lines y = y0 (eq. 18a); with tilt the circles about the tilting centre through (0, y0) (eq. 44a).
+struct BristlePath
+{
+  double theta = 0.0;                ///< the path's coordinate across the patch, y0 = sin(theta)
+  std::complex<double> entry;        ///< leading-edge point z_e (eqs. 19a, 45)
+  std::complex<double> velocity;     ///< dz/dtau at the leading edge, -1 + i omega z_e
+  double omega = 0.0;                ///< as BristleField::omega
+  double length = 0.0;               ///< travel from the leading to the trailing edge
+  double weight = 0.0;               ///< area element: dA = weight dtheta dtau
+
+  /// The path at theta in (-pi/2, pi/2) for the field's kinematics. The circle's entry point and length are
+  /// written so that they stay accurate for any tilting radius (no 1/omega cancels).
+  static BristlePath across(const BristleField& field, double theta);
+  /// The root's position after travelling tau from the leading edge (eq. 17b / 39b).
+  std::complex<double> position(double tau) const;
+  /// 1 - r^2 there, written so that it does not cancel near the edges (tau(L - tau) on a straight path).
+  double edgeDistance(double tau) const;
+};
+
+/// A piece of one path: the bristle adheres (from its deflection at the start) or slides over [begin, end].
+struct PathPiece
+{
+  double begin = 0.0, end = 0.0;
+  bool adhering = false;
+  std::complex<double> u_begin;  ///< deflection at begin
+};
+
+/// What one path contributes, as integrals over its travel (dimensionless as above).
+struct PathIntegrals
+{
+  std::complex<double> force;    ///< integral of u dtau
+  double moment = 0.0;           ///< integral of Im(conj(z) u) dtau (x u_y - y u_x)
+  double sliding = 0.0;          ///< travel spent sliding
+  double utilisation2 = 0.0;     ///< largest (|u| / f)^2 seen: 1 if any bristle slides, else sampled
+  double error = 0.0;            ///< bound on the error of the along-path quadrature of the sliding pieces
+  std::uint64_t signature = 0;   ///< the event structure: equal signatures, no jump between two paths
+  /// With the uniform pressure, the largest |u|^2 - f^2 the bristle reaches adhering from the leading edge (in
+  /// the stretch where its onset is searched): > 0 where it starts sliding before the trailing edge. Smooth
+  /// across paths, so a sign change between two paths of equal signature shows a band of other structure.
+  double onset_margin = 1.0;
+  bool truncated = false;        ///< rates too large for the series budget: the path's tail is not resolved
+
+  static constexpr int kMaxPieces = 16;
+  int pieces = 0;
+  std::array<PathPiece, kMaxPieces> piece{};  ///< filled only on request (solve's keep_pieces)
+};
+
+/// Solves one path with exact events: where the bristle reaches the bound (|u| = f, stick to slip) and
+/// where a sliding bristle re-adheres (the bound grows along the path faster than the drive pushes it,
+/// df/dtau >= |w|, the region G of re-adhesion, fixed in the plane), each located as a root of a polynomial
+/// (Taylor series of the exact path, to machine precision; polynomials of degree 2-4 on straight paths
+/// without the turn coupling) and isolated exactly. Adhering pieces are integrated exactly; sliding pieces by
+/// Gauss-Legendre rules graded towards the spin pole, with `tolerance` bounding their error.
+PathIntegrals solvePath(const BristleField& field, const BristlePath& path, double tolerance, bool keep_pieces = false);
+
+/// Re-adhesion margin at z in the front half of the patch: (df/dtau)^2 - |w|^2, scaled by a positive factor
+/// (4 (1 - r^2) for the Hertzian pressure); >= 0 exactly where a sliding bristle re-adheres (the region G, fixed
+/// in the plane: d(r^2)/dtau = -2x on every path, straight or circular). Always < 0 for the uniform pressure.
+double reAdhesionMargin(const BristleField& field, std::complex<double> z);
+
+/// The largest re-adhesion margin along the front half of a path: >= 0 iff the path meets G.
+double reAdhesionPeak(const BristleField& field, const BristlePath& path);
+
+/// How many separate stretches of G the front half of a path crosses.
+int reAdhesionCount(const BristleField& field, const BristlePath& path);
+
+/// Where the path through z crosses the y axis (its y0; straight: z's y), written without 1/omega.
+double pathThrough(const BristleField& field, std::complex<double> z);
+
+/// The deflection at travel tau on a path solved with keep_pieces (for drawing the field).
+std::complex<double> deflectionAt(const BristleField& field, const BristlePath& path, const PathIntegrals& solved,
+                                  double tau, bool* sliding = nullptr);
+
+}  // namespace sphere_contact_estimator

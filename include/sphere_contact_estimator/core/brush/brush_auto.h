@@ -1,0 +1,113 @@
+#pragma once
+
+// STL
+#include <memory>
+
+// Package
+#include "sphere_contact_estimator/core/brush/brush_linear.h"
+#include "sphere_contact_estimator/core/brush/brush_steady.h"
+#include "sphere_contact_estimator/core/brush/brush_transient.h"
+#include "sphere_contact_estimator/core/brush/rolling_frame.h"
+#include "sphere_contact_estimator/core/brush/steady_lag.h"
+
+namespace sphere_contact_estimator
+{
+/// Per update, the cheapest brush model whose error estimate at the point in hand meets
+/// BrushParameters::accuracy_target (a fraction of mu F_z), and that estimate in BrushForces::error_estimate.
+///
+/// - A steady state describes the contact when the slips are defined, |R_gamma| >= a with tilt, and either
+///   the step rolled at held inputs further than the longest path through the patch (V_r dt >= that length:
+///   every bristle then entered under these inputs, so the state is exactly the steady one, whatever came
+///   before), or the lag of the steady state behind the true one (SteadyLag: the recent changes of the
+///   linear forces, weighted by the share of the patch's memory each has left) is below half the target.
+///   Otherwise the transient model runs. Noisy odometry makes large changes at each message, but a message
+///   interval that rolls most of a patch length leaves little of them: the lag tells when the steady model
+///   is close enough.
+/// - In a steady state: the linear model if its error bound meets the budget left by the lag,
+///   else the steady model to that budget, which carries its own bound (BrushSteady). The linear bound is
+///   BrushLinear::errorBound.
+/// - The transient model at its resolution reports its own estimate (BrushTransient); when that exceeds the
+///   target the resolution doubles (up to kMaxTransientResolution): rolling, a lattice of twice the resolution
+///   runs beside it and takes over after the longest path (when it holds nothing of its start); at standstill,
+///   from the next entry into the transient model.
+///
+/// The transient model is left only after the steady conditions have held over one transit (2a travelled),
+/// when its state is the steady one, and entered from a steady state by rolling it to that state at the last
+/// rolling inputs. At every switch the published forces carry the difference between the two models and let
+/// it decay over a quarter transit, so they do not jump; the carried difference counts in the estimate.
+class BrushAuto : public BrushModel
+{
+public:
+  explicit BrushAuto(const BrushParameters& parameters);
+
+  BrushForces update(const ContactKinematics& kinematics, double dt) override;
+  void reset() override;
+  /// Turns its transient state and the force history with the frame (entering the transient later from a
+  /// steady state needs no turning: that state is built in the new frame).
+  void rotateFrame(double alpha) override;
+  BrushModelKind kind() const override { return BrushModelKind::Auto; }
+
+  /// The model that produced the last update, and its resolution (0 for linear and steady).
+  BrushModelKind lastModel() const override { return last_model_; }
+  int lastResolution() const override { return last_resolution_; }
+  /// The transient lattice's bristles when it gave the answer, else the steady field of the last slips.
+  void visitBristles(const BristleVisitor& visit) const override;
+  /// Estimated cost of all updates so far [ns] (per-evaluation costs measured in docs/benchmarks.md).
+  double cost() const { return cost_; }
+  /// The resolution its transient model runs at now.
+  int transientResolution() const { return transient_resolution_; }
+
+  /// Estimated cost [ns] of one evaluation (docs/benchmarks.md, this machine kind).
+  static constexpr double kLinearCost = 60.0;
+  static constexpr double kSteadyPathCost = 250.0;
+  static double transientStepCost(int resolution) { return 55.0 * resolution * resolution; }
+  static constexpr int kMaxTransientResolution = 128;
+
+private:
+  // the phases of update(): is a steady state good enough (and its lag), which family answers (entering or
+  // leaving the transient model), the transient answer (growing its lattice), continuity across switches
+  struct SteadyCheck
+  {
+    bool steady = false;   // a steady state describes the contact to half the target
+    bool renewed = false;  // this step rolled the longest path: the state is exactly the steady one
+    double lag = 0.0;      // of the steady state behind the true one, a fraction of mu F_z
+  };
+  SteadyCheck checkSteady(const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame, double dt,
+                          double target);
+  void chooseFamily(const ContactKinematics& kin, const Slips& s, double dt, const SteadyCheck& check);
+  BrushForces transientAnswer(const ContactKinematics& kin, const Slips& s, double dt, double target, int& resolution);
+  void carryAcrossSwitches(BrushForces& out, const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame,
+                           double dt, BrushModelKind before, int before_resolution, BrushModelKind model, int resolution);
+  BrushForces steadyFamily(const Slips& s, const Eigen::Vector2d& sigma, double budget, BrushModelKind& model);
+  void stepLag(const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame, double target,
+               bool steady_exists, double travel);
+  void enterTransient();
+
+  BrushLinear linear_;
+  BrushSteady steady_;
+  std::unique_ptr<BrushTransient> transient_;
+  std::unique_ptr<BrushTransient> finer_;  // twice the resolution, rolling beside transient_ until it takes over
+  double finer_travel_ = 0.0;
+  int transient_resolution_ = 16;
+  int pending_resolution_ = 0;  // asked for by a missed target, applied at the next entry
+  bool in_transient_ = false;
+  double steady_distance_ = 0.0;  // travelled while the steady conditions held, in transient mode
+  SteadyLag lag_;  // of the steady state behind the true one
+  BrushForces steady_cache_;    // the steady model at this update's inputs, if stepLag evaluated it
+  bool steady_cached_ = false;
+  double linear_bound_ = 0.0;   // BrushLinear::errorBound at this update's inputs
+  Eigen::Vector2d last_lag_sigma_ = Eigen::Vector2d::Zero();  // the slips and spin of the last lag step
+  double last_lag_phi_ = 0.0;
+  double last_lag_ = 0.0;     // its last value, a fraction of mu F_z
+  double entry_error_ = 0.0;  // the warm start's deviation from the true state, forgotten as bristles renew
+  ContactKinematics last_rolling_;  // the last inputs with V_r above standstill
+  bool have_rolling_ = false;
+  BrushForces offset_;  // carried difference at the last switch
+  bool answered_ = false;  // an answer since the last reset: switches are then smoothed
+  BrushModelKind last_model_ = BrushModelKind::Linear;
+  Slips last_slips_;  // of the last update, for visitBristles
+  int last_resolution_ = 0;
+  double cost_ = 0.0;
+};
+
+}  // namespace sphere_contact_estimator

@@ -1,0 +1,93 @@
+#pragma once
+
+// STL
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string_view>
+
+// Package
+#include "sphere_contact_estimator/core/brush/brush_forces.h"
+#include "sphere_contact_estimator/core/brush/brush_parameters.h"
+#include "sphere_contact_estimator/core/brush/contact_kinematics.h"
+
+namespace sphere_contact_estimator
+{
+/// The brush models, and none; the numbers are those of the node's brush_model parameter.
+enum class BrushModelKind : std::uint8_t
+{
+  Off = 0,        ///< no brush model
+  Linear = 1,     ///< eqs. 61-62: steady state, vanishing sliding (BrushLinear)
+  Steady = 2,     ///< steady bristle field along the paths, limited friction (BrushSteady)
+  Transient = 3,  ///< the brush PDE in the time domain (BrushTransient)
+  Auto = 4,       ///< per update the cheapest of the above that meets accuracy_target (BrushAuto)
+};
+
+const char* toString(BrushModelKind kind);
+/// Parses "linear", "steady", "transient" or "auto" (a model to run: not "off").
+std::optional<BrushModelKind> parseBrushModelKind(std::string_view name);
+
+/// One interface for the brush models: forces from the contact kinematics over a step, and what the estimator
+/// needs besides (retuning, the model last used, the bristles to draw), so that it needs no concrete type.
+class BrushModel
+{
+public:
+  /// Validates the parameters (std::invalid_argument).
+  explicit BrushModel(const BrushParameters& parameters);
+  virtual ~BrushModel() = default;
+
+  /// Forces after advancing by dt [s] with the kinematics held constant over the step. The steady
+  /// models ignore dt; the transient model integrates over it. Throws std::invalid_argument for
+  /// non-finite kinematics or a negative or non-finite dt.
+  virtual BrushForces update(const ContactKinematics& kinematics, double dt) = 0;
+  /// Forgets all history (transient state); a no-op for the steady models.
+  virtual void reset() {}
+  /// The patch frame turned by alpha [rad] about its z axis (paper frame, z down), for heading changes the
+  /// turn coupling does not carry (the rolling direction re-initialised after standstill or a reversal):
+  /// state that lives in the frame is re-expressed in the new axes. Stateless models have nothing to turn.
+  virtual void rotateFrame(double /*alpha*/) {}
+  virtual BrushModelKind kind() const = 0;
+
+  /// New parameters in place, keeping the state where it still means something. False when this model
+  /// cannot (the default): the caller makes a new one. Throws std::invalid_argument, changing nothing, for
+  /// invalid parameters.
+  virtual bool retune(const BrushParameters& /*parameters*/) { return false; }
+  /// The model that gave the last answer (auto: the one it chose), and the transient lattice's resolution
+  /// it used (0 when none ran).
+  virtual BrushModelKind lastModel() const { return kind(); }
+  virtual int lastResolution() const { return 0; }
+  /// Visits the bristles behind the last answer, for drawing: visit(position x [m], sliding), paper frame.
+  /// Models without a bristle field (linear), and every model at standstill without state, visit none.
+  using BristleVisitor = std::function<void(const Eigen::Vector2d& x, bool sliding)>;
+  virtual void visitBristles(const BristleVisitor& /*visit*/) const {}
+
+  const BrushParameters& parameters() const { return p_; }
+
+protected:
+  static void checkInput(const ContactKinematics& kinematics, double dt);
+
+  BrushParameters p_;
+};
+
+/// The steady models, which work on slips (eq. 12) in the frame where epsilon = (0, 1): update()
+/// computes the slips, rotates into that frame, evaluates and rotates the forces back. Below the
+/// standstill speed the slips are undefined: zero forces, flagged kStandstill.
+class BrushSlipModel : public BrushModel
+{
+public:
+  using BrushModel::BrushModel;
+  BrushForces update(const ContactKinematics& kinematics, double dt) override;
+
+  /// Forces from slips in the epsilon = (0, 1) frame: sigma, spin phi, and its tilt and turn parts
+  /// phi_gamma + phi_psi = phi (eq. 13).
+  virtual BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi) const = 0;
+
+protected:
+  Slips last_;  ///< the slips of the last update (defined false at standstill)
+};
+
+/// The model of that kind (nullptr for Off). Throws std::invalid_argument for invalid parameters.
+std::unique_ptr<BrushModel> makeBrushModel(BrushModelKind kind, const BrushParameters& parameters);
+
+}  // namespace sphere_contact_estimator

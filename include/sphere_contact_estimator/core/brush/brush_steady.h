@@ -1,0 +1,73 @@
+#pragma once
+
+// STL
+#include <functional>
+
+// Package
+#include "sphere_contact_estimator/core/brush/bristle_path.h"
+#include "sphere_contact_estimator/core/brush/brush_model.h"
+
+namespace sphere_contact_estimator
+{
+/// Steady-state bristle field with limited friction (Romano et al. Sects. 3, 4, 6), to a requested accuracy.
+///
+/// In the frame where epsilon = (0, 1) the characteristics (bristle paths) are the lines y = const (eq. 18a)
+/// or, with tilt, circles about the tilting centre (0, 1/phi_gamma) (eq. 44a). Along each the bristle obeys
+/// du/dsigma_s = sigma + A_phi x [+ A_phi_psi u with tilt] (eqs. 11, 32), starting undeformed at the leading
+/// edge (eq. 8): without friction this is eq. 23 resp. eq. 51. With friction (eq. 4) it slides where |k u|
+/// would exceed mu q_z, with |q| = mu q_z along the rigid sliding field sigma + A_phi x (Sect. 6), and
+/// re-adheres from its capped deflection where the bound grows along the path faster than that field pushes
+/// it (docs: the re-adhesion region G). Both events are located exactly on every path (solvePath); the
+/// pieces between them are integrated exactly (adhesion) or by graded Gauss rules (sliding); across paths
+/// an adaptive Gauss-Kronrod quadrature, split where the event structure changes, integrates until its
+/// error estimate meets the tolerance (integratePatch).
+///
+/// The tolerance is BrushParameters::accuracy_target, a fraction of mu F_z bounding each of F_x, F_y and
+/// M_z / a; every answer carries its estimate in BrushForces::error_estimate (flagged kAccuracyNotMet when
+/// the path budget ran out first). `resolution` is not used.
+///
+/// |R_gamma| < a: no steady state on an inner disc (Fig. 2): flagged, zero forces; fall back to the
+/// transient model. Standstill: flagged, zero forces.
+class BrushSteady : public BrushSlipModel
+{
+public:
+  explicit BrushSteady(const BrushParameters& parameters);
+  BrushModelKind kind() const override { return BrushModelKind::Steady; }
+  /// The field of the last update's slips on kVisitPaths x kVisitPoints points.
+  void visitBristles(const BristleVisitor& visit) const override;
+  /// The same for given slips (as update() takes them).
+  void visitBristles(const Slips& slips, const BristleVisitor& visit) const;
+
+  /// Forces to the parameters' accuracy target; phi_gamma and phi_psi are used with tilt on only.
+  BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi) const override;
+  /// What one evaluation took.
+  struct Stats
+  {
+    int paths = 0;  ///< characteristics solved
+  };
+  /// The same to `tolerance` (a fraction of mu F_z), in (0, 1].
+  BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi, double tolerance,
+                       Stats* stats = nullptr) const;
+
+  /// The same, and the field on a regular grid of paths and points along them to visit(x, u, sliding) [m]
+  /// (for drawing the zones).
+  using Visitor = std::function<void(const Eigen::Vector2d& x, const Eigen::Vector2d& u, bool sliding)>;
+  BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi,
+                       const Visitor& visit) const;
+
+  /// The dimensionless problem of these slips (BristleField): deflections in units of mu q_z(0) / k, lengths
+  /// in units of a. False (and no field) when there is nothing to integrate: no friction or no load.
+  bool field(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi, BristleField& out) const;
+
+  /// Largest number of paths one evaluation may solve (about 2 ms); beyond, kAccuracyNotMet.
+  static constexpr int kMaxPaths = 20000;
+  /// Paths and points per path shown to a visitor.
+  static constexpr int kVisitPaths = 24;
+  static constexpr int kVisitPoints = 24;
+
+private:
+  BrushForces solve(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi, double tolerance,
+                    const Visitor* visit, Stats* stats = nullptr) const;
+};
+
+}  // namespace sphere_contact_estimator

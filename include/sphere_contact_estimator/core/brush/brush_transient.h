@@ -1,0 +1,128 @@
+#pragma once
+
+// STL
+#include <cstdint>
+#include <vector>
+
+// Eigen
+#include <Eigen/Core>
+
+// Package
+#include "sphere_contact_estimator/core/brush/brush_model.h"
+
+namespace sphere_contact_estimator
+{
+/// The brush PDE in the time domain (Romano et al. eq. 1 with v_s = 0 where the bristle adheres):
+///   du/dt + (v_t . grad) u = -V_s - A_omega_z x [- A_psi_dot u],   v_t = -V_r [- A_omega_gamma x]
+/// (the bracketed terms with tilt on: the velocity field of eq. 31, where A_omega_gamma = -chi_gamma A_omega_z
+/// turns the roots with the sphere at rate +omega_gamma, and the turn coupling chi_psi A_omega_z u =
+/// A_psi_dot u of eq. 1). Nothing is divided by V_r, so it holds down to
+/// standstill and covers pure spin (Sect. 5, v_t = 0).
+///
+/// Discretisation: the bristles are followed as material points. v_t is a rigid motion (a translation,
+/// or a rotation about the tilting centre), so bristles that start on a square lattice of spacing
+/// h = 2a / resolution stay on one, moved rigidly: advection is exact, with no numerical diffusion and
+/// no stability limit. Each bristle integrates its ODE with the exact rotation of the turn coupling and
+/// the midpoint value of the drive; it enters with u = 0 where it crosses the leading edge (eq. 8; the
+/// crossing time is interpolated within the substep) and is dropped when it leaves. Limited friction caps
+/// it after every substep (FrictionCap). Forces are the lattice sum of k u over the bristles inside the
+/// patch, with the cell weight normalised so that the lattice sum of q_z is F_z (then |F_t| <= mu F_z
+/// exactly). At the onset of sliding the deflection jumps onto the sliding field, and at the patch edge the
+/// field ends: a plain lattice sum across such a jump is first order, so each bristle records how far it has
+/// travelled since its onset and the jump there, and the sum corrects the part of its cell (along its
+/// motion) that lies on the other side of the jump or of the edge. That makes the sum second order where the
+/// lattice rows follow the rolling direction, as in the estimator's contact frame.
+///
+/// error_estimate: twice the largest change of the forces (F_x, F_y, M_z / a, a fraction of mu F_z) when the
+/// sum is taken over any of the four sub-lattices of twice the spacing instead; the sum's error falls at least
+/// as fast as the spacing, so the coarser sum is at least as far off, and the factor 2 covers the irregular
+/// part of the error (cells cut by the edge and by the onsets), measured over noisy histories at random
+/// operating points. Re-adhering streaks narrower than three spacings (where a spin pole lies in the front of
+/// the patch), which no lattice row may cross, add their largest possible force (streakBound); the steady
+/// model resolves those exactly.
+///
+/// update() advances by the caller's dt in substeps that keep each bristle's path within half a lattice
+/// spacing and every rotation below 0.1 rad; at most kMaxSubsteps of them (flagged when that is short).
+class BrushTransient : public BrushModel
+{
+public:
+  explicit BrushTransient(const BrushParameters& parameters);
+
+  BrushForces update(const ContactKinematics& kinematics, double dt) override;
+  void reset() override;
+  BrushModelKind kind() const override { return BrushModelKind::Transient; }
+  /// setParameters(); always true (the state is kept or reset, as setParameters says).
+  bool retune(const BrushParameters& parameters) override
+  {
+    setParameters(parameters);
+    return true;
+  }
+  int lastResolution() const override { return p_.resolution; }
+  void visitBristles(const BristleVisitor& visit) const override
+  {
+    forEachBristle([&](const Eigen::Vector2d& x, const Eigen::Vector2d&, bool sliding) { visit(x, sliding); });
+  }
+
+  /// Forces of the current bristle state, without advancing.
+  BrushForces forces() const;
+
+  /// The patch frame turned by alpha [rad] about its z axis (paper frame, z down): bristle positions and
+  /// deflections, which are physical, are re-expressed in the new axes. For heading changes that the turn
+  /// coupling does not carry (re-initialising the rolling direction after standstill or a reversal).
+  void rotateFrame(double alpha) override;
+
+  /// New parameters. The bristle state is kept unless the lattice changes (patch radius or resolution):
+  /// deflections stay meaningful under a new stiffness, load, friction, pressure or formulation, and the
+  /// next substep applies the new bound. Returns true when the state had to be reset.
+  bool setParameters(const BrushParameters& parameters);
+
+  /// Visits every bristle inside the patch: f(position x [m], deflection u [m], sliding).
+  template <class F>
+  void forEachBristle(F&& f) const
+  {
+    for (int j = 0; j < w_; ++j)
+      for (int i = 0; i < w_; ++i)
+      {
+        const std::size_t p = index(i, j);
+        if (inside_[p])
+          f(position(i, j), u_[p], static_cast<bool>(sliding_[p]));
+      }
+  }
+
+  /// Lattice spacing h [m].
+  double spacing() const { return h_; }
+
+  static constexpr int kMaxSubsteps = 4096;
+
+private:
+  std::size_t index(int i, int j) const { return static_cast<std::size_t>(j) * w_ + i; }
+  Eigen::Vector2d position(int i, int j) const
+  {
+    return o_ + R_ * Eigen::Vector2d((i - c0_) * h_, (j - c0_) * h_);
+  }
+  void allocate();  // sizes the lattice for p_ and resets
+  void substep(const ContactKinematics& kin, double dt);
+  void recentre();
+  double streakBound(const ContactKinematics& kin) const;
+
+  double h_;                      // lattice spacing
+  int w_;                         // window width in lattice points
+  double c0_;                     // lattice coordinate of the window centre, in spacings
+  Eigen::Matrix2d R_;             // lattice pose: x = o + R l
+  Eigen::Vector2d o_;
+  std::vector<Eigen::Vector2d> u_;     // deflection per lattice point
+  std::vector<std::uint8_t> inside_;   // inside the patch after the last substep
+  std::vector<std::uint8_t> sliding_;  // capped in the last substep
+  std::vector<double> slip_travel_;    // travel since the onset of sliding (infinite while adhering)
+  std::vector<Eigen::Vector2d> jump_;  // deflection before minus after that onset
+  // scratch for recentre(), sized once: the hot path does not allocate
+  std::vector<Eigen::Vector2d> u_scratch_, jump_scratch_;
+  std::vector<std::uint8_t> inside_scratch_, sliding_scratch_;
+  std::vector<double> slip_travel_scratch_;
+  // the rigid motion of the last substep, for the direction each bristle moves in
+  Eigen::Vector2d V_r_ = Eigen::Vector2d::Zero();
+  double omega_gamma_ = 0.0;
+  double streak_estimate_ = 0.0;  // streakBound of the last update's inputs
+};
+
+}  // namespace sphere_contact_estimator

@@ -1,0 +1,49 @@
+#pragma once
+
+// STL
+#include <complex>
+#include <functional>
+
+// Package
+#include "sphere_contact_estimator/core/brush/bristle_path.h"
+
+namespace sphere_contact_estimator
+{
+/// The steady bristle field integrated over the unit patch (dimensionless as BristleField), with a bound on
+/// its error.
+struct PatchIntegral
+{
+  std::complex<double> force;  ///< integral of u dA
+  double moment = 0.0;         ///< integral of (x u_y - y u_x) dA
+  double sliding_area = 0.0;   ///< area where the bristles slide (the patch's is pi)
+  double utilisation2 = 0.0;   ///< largest (|u| / f)^2 seen
+  /// Bound on the error of each of force.real(), force.imag() and moment (the largest of the three).
+  double error = 0.0;
+  int paths = 0;               ///< paths solved
+  bool converged = false;      ///< error <= the tolerance asked for
+};
+
+/// Integrates the field over the patch to `tolerance` (in the units of the result, a bound on each of the
+/// three integrals). Across the paths, theta in (-pi/2, pi/2) (y0 = sin theta), by 15-point Gauss-Kronrod
+/// rules on sub-intervals: split first at the path through the spin pole, where the sliding direction
+/// reverses; then wherever two nodes of a rule see a different event structure along their paths (a path
+/// tangent to the re-adhesion region G or to the stick-slip curve, G reaching the leading edge), located by
+/// bisection on the structure, so that no rule straddles a change of structure; then the sub-interval with
+/// the largest error estimate (|Kronrod - Gauss|) is halved until the sum meets the tolerance. The along-path
+/// quadrature's own bound (solvePath) is added. Stops, unconverged, after `max_paths` paths.
+PatchIntegral integratePatch(const BristleField& field, double tolerance, int max_paths = 20000);
+
+/// Theta of the path through the spin pole, if the pole lies inside the patch.
+bool polePath(const BristleField& field, double& theta);
+
+/// Where the event structure across the paths changes for reasons fixed in the plane, ascending: the pole's
+/// path; the extent across the paths of G's component around a front-half pole; where G meets the leading
+/// edge. Returns how many it wrote (at most max_count).
+int structureBreakpoints(const BristleField& field, double* theta, int max_count);
+
+/// The ranges of theta where the paths cross a stretch of G that the paths beside them lack (G around a
+/// front-half pole, G at the leading edge): each anchors a streak of re-adhering bristles as wide as itself.
+/// Returns how many it wrote (at most max_count).
+int reAdhesionBands(const BristleField& field, double* lo, double* hi, int max_count);
+
+}  // namespace sphere_contact_estimator

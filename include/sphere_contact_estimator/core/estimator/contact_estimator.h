@@ -1,0 +1,147 @@
+#pragma once
+
+// STL
+#include <cstdint>
+#include <functional>
+#include <memory>
+
+// Eigen
+#include <Eigen/Core>
+
+// Package
+#include "sphere_contact_estimator/core/brush/brush_model.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_model.h"
+#include "sphere_contact_estimator/core/estimator/estimator_settings.h"
+
+namespace sphere_contact_estimator
+{
+/// Wheel kinematics of one odometry message, rotated into a gravity-aligned ground frame with ROS axes
+/// (REP 103: z up).
+struct EstimatorInput
+{
+  double stamp = 0.0;                                     ///< message time [s]
+  Eigen::Vector3d omega = Eigen::Vector3d::Zero();        ///< angular velocity of the sphere [rad/s]
+  Eigen::Vector3d v_contact = Eigen::Vector3d::Zero();    ///< velocity of the contact-patch centre [m/s]
+};
+
+/// Bit flags of one estimate, beside the models' own (brush_flags, cylinder_flags).
+namespace estimate_flags
+{
+constexpr std::uint32_t kTimeJumpReset = 1u << 0;   ///< stamp went backwards (looping bag): state reset
+constexpr std::uint32_t kGapReset = 1u << 1;        ///< gap longer than max_step: transient state reset
+constexpr std::uint32_t kDuplicateStamp = 1u << 2;  ///< within 1 ns of the last stamp: not advanced
+constexpr std::uint32_t kStandstill = 1u << 3;      ///< V_r below standstill_speed: slips undefined
+constexpr std::uint32_t kHeadingReset = 1u << 4;    ///< rolling direction re-initialised (after standstill
+                                                    ///< or a jump): the transient state was turned with it
+}  // namespace estimate_flags
+
+/// One estimate, everything in the ROS contact frame (REP 103: x along the rolling direction, y left,
+/// z up; docs/conventions.md): lateral slips and forces, spins and yaw moments have the opposite sign of the
+/// paper frame's.
+struct ContactEstimateData
+{
+  double stamp = 0.0;
+  double dt = 0.0;            ///< time advanced [s]
+  double heading = 0.0;       ///< yaw of the contact frame in the ground frame [rad]
+  double turn_rate = 0.0;     ///< psi_dot about z up [rad/s]
+  double rolling_speed = 0.0; ///< V_r [m/s]
+  Eigen::Vector2d sliding_velocity = Eigen::Vector2d::Zero();  ///< V_s [m/s]
+  bool slips_defined = false;
+  Eigen::Vector2d slip = Eigen::Vector2d::Zero();  ///< (sigma_x, sigma_y) [-]
+  double spin = 0.0, spin_tilt = 0.0, spin_turn = 0.0;  ///< phi, phi_gamma, phi_psi [1/m]
+  double tilt_ratio = 1.0;    ///< chi_gamma (1 when omega_z = 0)
+  Eigen::Vector2d epsilon = Eigen::Vector2d::Zero();  ///< eq. 12b in the paper's contact frame: (0, 1) when defined
+  double patch_radius = 0.0;  ///< a [m], of the current settings (also with the brush model off)
+  double load = 0.0;          ///< F_z [N], of the current settings (also with the brush model off)
+
+  BrushModelKind brush_model = BrushModelKind::Off;       ///< as configured
+  BrushModelKind brush_model_used = BrushModelKind::Off;  ///< the model that ran (differs under auto)
+  int brush_resolution = 0;                         ///< the transient model's resolution (0: linear, steady, off)
+  BrushForces brush;          ///< F_x, F_y [N], M_z [N m] on the sphere, ROS contact frame
+  double friction = 0.0;      ///< mu in force (0 with the brush model off)
+  /// Power the ground's stresses take from the sphere's contact material, -(F_t . V_s + M_z omega_z) [W]:
+  /// the material at x moves at V_s + omega_z e_z x x relative to the ground. In a steady state it is what
+  /// sliding and the released bristles dissipate; in a transient, part of it is stored in the bristles.
+  double brush_power = 0.0;
+  double rolling_resistance_power = 0.0;   ///< F_R L V_r [W], dissipated by the viscous surface (eq. 17)
+
+  CylinderModelKind rolling_resistance_model = CylinderModelKind::Off;
+  CylinderState rolling_resistance;  ///< per unit length, as CylinderModel::solve returns it
+  double rolling_resistance_force = 0.0;   ///< F_R L [N], against the rolling direction
+  double rolling_resistance_torque = 0.0;  ///< R F_R L [N m]
+
+  std::uint32_t flags = 0;    ///< estimate_flags
+  double compute_time = 0.0;  ///< wall time of update() [s]
+
+  bool valid() const;
+};
+
+/// The estimator behind the node, the nodelet and the bag tools: odometry kinematics in, slips, brush
+/// forces and rolling resistance out, with the state that links messages (time, heading, turn rate, the
+/// transient bristles). ROS-free; the ROS layer converts messages and frames.
+///
+/// Per message: V_r = R_r (omega_y, -omega_x) in the ground frame (docs/conventions.md); the contact frame's x
+/// follows V_r (held at standstill); psi_dot is the low-passed rate of that heading (or (1 - chi_gamma)
+/// omega_z); vectors are rotated into the contact frame, converted to the paper frame (x, -y, -z), fed to
+/// the models, and the results converted back.
+class ContactEstimator
+{
+public:
+  /// Throws std::invalid_argument for invalid settings.
+  explicit ContactEstimator(const EstimatorSettings& settings);
+
+  /// New settings. Throws std::invalid_argument and keeps the old ones when they are invalid. Models are
+  /// rebuilt only when their parameters change; the transient state survives unless its lattice changes.
+  void configure(const EstimatorSettings& settings);
+  const EstimatorSettings& settings() const { return settings_; }
+
+  /// Processes one message. Returns nullptr, changing nothing, when the input is not finite or impossible
+  /// (a speed or the sphere's surface faster than light, slips past the range of a double); otherwise the
+  /// estimate, valid until the next call.
+  const ContactEstimateData* update(const EstimatorInput& input);
+
+  /// Forgets the history: time, heading, turn rate, transient bristles.
+  void reset();
+
+  /// The brush model (null when off).
+  const BrushModel* brushModel() const { return brush_.get(); }
+
+  /// Shows the bristles behind the last estimate to visit(x, sliding), x in the ROS contact frame [m]:
+  /// the transient model's lattice, or the steady model's field at the last slips (none for the linear
+  /// model, which has no zones, or when the slips were undefined).
+  void visitBristles(const std::function<void(const Eigen::Vector2d& x, bool sliding)>& visit) const;
+
+  /// Heading changes larger than this between two messages re-initialise the frame instead of counting
+  /// as a turn rate [rad].
+  static constexpr double kHeadingJump = 0.5;
+  /// Stamps closer than a ROS stamp's resolution (1 ns) count as duplicates.
+  static constexpr double kMinStep = 1e-9;
+
+private:
+  void adopt();
+  // the phases of update(): refuse impossible input, advance the clock (dt and the time flags), follow the
+  // contact frame's heading (turn rate), the kinematics in the paper frame (slips into the estimate), the models
+  bool acceptable(const EstimatorInput& in, const Eigen::Vector2d& V_r, double speed) const;
+  double advanceClock(double stamp, std::uint32_t& flags);
+  void followHeading(const Eigen::Vector2d& V_r, double speed, double dt, bool first, std::uint32_t& flags);
+  ContactKinematics contactKinematics(const EstimatorInput& in, double psi_dot, ContactEstimateData& out) const;
+  void runBrush(const ContactKinematics& kin, double dt, double omega_z, ContactEstimateData& out);
+  void runRollingResistance(double speed, ContactEstimateData& out) const;
+  bool slipsRepresentable(const EstimatorInput& in, const Eigen::Vector2d& V_r, double speed) const;
+  void rebuildBrush(const EstimatorSettings& next);
+  void rebuildCylinder(const EstimatorSettings& next);
+
+  EstimatorSettings settings_;
+  double patch_radius_ = 0.0, load_ = 0.0;  // of settings_, set by adopt()
+  std::unique_ptr<BrushModel> brush_;
+  std::unique_ptr<CylinderModel> cylinder_;
+  ContactEstimateData out_;
+  bool have_last_ = false;
+  double last_stamp_ = 0.0;
+  bool have_heading_ = false;  // a rolling direction has been seen
+  bool was_rolling_ = false;
+  double heading_ = 0.0;
+  double turn_rate_ = 0.0;
+};
+
+}  // namespace sphere_contact_estimator

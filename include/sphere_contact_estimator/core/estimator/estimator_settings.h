@@ -1,0 +1,65 @@
+#pragma once
+
+// STL
+#include <cstdint>
+
+// Package
+#include "sphere_contact_estimator/core/brush/brush_model.h"
+#include "sphere_contact_estimator/core/brush/brush_parameters.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_model.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_parameters.h"
+
+namespace sphere_contact_estimator
+{
+/// Where the turning rate psi_dot of the contact frame comes from.
+enum class TiltRatioSource : std::uint8_t
+{
+  Estimate = 0,  ///< from the heading of V_r over time; chi_gamma follows
+  Fixed = 1,     ///< psi_dot = (1 - tilt_ratio) omega_z
+};
+
+/// Everything a scene sets; the node's parameters have the same names. SI units. These defaults are the
+/// package's only definition of them: cfg/ContactEstimator.cfg and config/contact_estimator.yaml repeat them
+/// (for dynamic_reconfigure and rosparam), and test_parameters fails when either disagrees. The scene: a
+/// 20 cm, 5 kg spherical robot with a rubber shell on a firm, slightly viscous floor.
+struct EstimatorSettings
+{
+  // sphere and load
+  double rolling_radius = 0.1;  ///< R_r [m]
+  double robot_mass = 5.0;      ///< [kg]; the load is robot_mass * gravity unless load > 0
+  double load = 0.0;            ///< F_z [N]; 0: robot_mass * gravity
+  double gravity = 9.81;        ///< [m/s^2]
+  // brush
+  BrushModelKind brush_model = BrushModelKind::Auto;  ///< the default: chosen on the demo bag (README)
+  double patch_radius = 0.01;      ///< a [m], unless contact_modulus > 0
+  double contact_modulus = 0.0;    ///< E* [Pa]; > 0: a from Hertz with R = rolling_radius
+  double bristle_stiffness = 2e8;  ///< k [N/m^3]
+  double friction = 0.8;           ///< mu
+  PressureDistribution pressure = PressureDistribution::Parabolic;
+  bool tilt = false;               ///< Sect. 4 formulation (eq. 31, 32)
+  TiltRatioSource tilt_ratio_source = TiltRatioSource::Estimate;
+  double tilt_ratio = 1.0;         ///< chi_gamma for TiltRatioSource::Fixed
+  int resolution = 32;             ///< transient: lattice spacings across 2a (auto starts there)
+  double accuracy_target = 0.01;   ///< steady: its error bound; auto: largest error; relative to mu F_z
+  double standstill_speed = 0.05;  ///< V_r below which slips are undefined [m/s] (above odometry noise)
+  double turn_rate_time_constant = 0.05;  ///< low-pass of the psi_dot estimate [s]
+  double max_step = 0.5;           ///< a longer gap between messages resets the transient state [s]
+  // rolling resistance (Poeschel et al.), the sphere taken as a cylinder of effective length L
+  CylinderModelKind rolling_resistance_model = CylinderModelKind::Table;
+  double surface_stiffness = 1e8;  ///< k [N/m^3]
+  double surface_damping = 1e5;    ///< gamma [kg/(m^2 s)]
+  double surface_density = 10.0;   ///< m [kg/m^2]
+  double mass_per_length = 0.0;    ///< M [kg/m]; 0: load / (gravity L)
+  double effective_length = 0.1;   ///< L [m]
+
+  /// F_z [N].
+  double verticalLoad() const { return load > 0.0 ? load : robot_mass * gravity; }
+  /// The brush model's parameters (patch radius from Hertz when contact_modulus > 0).
+  BrushParameters brushParameters() const;
+  /// The cylinder model's parameters.
+  CylinderParameters cylinderParameters() const;
+  /// Throws std::invalid_argument naming the first bad value (parameter names as the node's).
+  void validate() const;
+};
+
+}  // namespace sphere_contact_estimator

@@ -1,0 +1,53 @@
+#pragma once
+
+// STL
+#include <array>
+#include <cstdint>
+#include <string>
+
+// Package
+#include "sphere_contact_estimator/core/estimator/contact_estimator.h"
+
+namespace sphere_contact_estimator
+{
+/// What a run did, accumulated over its estimates (bag_analyze's summary). Integrals use the trapezoid rule
+/// over each estimate's own dt, so the intervals the estimator did not advance over (a gap longer than
+/// max_step, a time jump, a duplicate stamp) count nothing.
+class RunSummary
+{
+public:
+  /// Adds one estimate (the next in time).
+  void add(const ContactEstimateData& e);
+
+  std::uint64_t estimates() const { return estimates_; }
+  double duration() const { return duration_; }            ///< time integrated over [s]
+  double distance() const { return distance_; }            ///< rolled, integral of V_r [m]
+  double rollingResistanceEnergy() const { return rr_energy_; }  ///< integral of F_R L V_r [J]
+  double brushEnergy() const { return brush_energy_; }     ///< integral of -(F . V_s + M_z omega_z) [J]
+  /// Share of the time with more than `threshold` of the patch sliding, for threshold 1 % and 50 %.
+  double slidingShareAny() const { return duration_ > 0.0 ? sliding_any_ / duration_ : 0.0; }
+  double slidingShareMostly() const { return duration_ > 0.0 ? sliding_mostly_ / duration_ : 0.0; }
+  double peakForce() const { return peak_force_; }          ///< largest |F_t| [N]
+  double peakMoment() const { return peak_moment_; }        ///< largest |M_z| [N m]
+  double peakUtilisation() const { return peak_utilisation_; }  ///< largest |F_t| / (mu F_z) [-]
+  double peakBristleUtilisation() const { return peak_bristle_; }  ///< largest |q| / (mu q_z) [-]
+  double peakRollingResistance() const { return peak_rr_; }  ///< largest F_R L [N]
+  /// Estimates per brush model that ran (indexed by BrushModelKind: off, linear, steady, transient).
+  const std::array<std::uint64_t, 4>& brushModelsUsed() const { return models_used_; }
+  std::uint64_t invalid() const { return invalid_; }       ///< estimates outside a model's assumptions
+  std::uint64_t resets() const { return resets_; }         ///< time jumps and gaps
+
+  /// A few lines for people: distance, energies, sliding, peaks, the models auto chose.
+  std::string report() const;
+
+private:
+  std::uint64_t estimates_ = 0, invalid_ = 0, resets_ = 0;
+  std::array<std::uint64_t, 4> models_used_{};
+  double duration_ = 0.0, distance_ = 0.0, rr_energy_ = 0.0, brush_energy_ = 0.0;
+  double sliding_any_ = 0.0, sliding_mostly_ = 0.0;
+  double peak_force_ = 0.0, peak_moment_ = 0.0, peak_utilisation_ = 0.0, peak_bristle_ = 0.0, peak_rr_ = 0.0;
+  bool have_last_ = false;
+  double last_speed_ = 0.0, last_rr_power_ = 0.0, last_brush_power_ = 0.0, last_sliding_ = 0.0;
+};
+
+}  // namespace sphere_contact_estimator

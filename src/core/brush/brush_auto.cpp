@@ -1,0 +1,364 @@
+#include "sphere_contact_estimator/core/brush/brush_auto.h"
+
+// STL
+#include <algorithm>
+#include <cmath>
+
+// Boost
+#include <boost/math/constants/constants.hpp>
+
+// Package
+#include "sphere_contact_estimator/core/brush/rolling_frame.h"
+
+namespace sphere_contact_estimator
+{
+namespace
+{
+BrushParameters withResolution(BrushParameters p, int n)
+{
+  p.resolution = n;
+  return p;
+}
+
+// The largest of |dF_x|, |dF_y| and |dM_z| / a, as a fraction of mu F_z.
+double distance(const BrushForces& a, const BrushForces& b, const BrushParameters& p)
+{
+  const double scale = p.mu * p.F_z;
+  if (!(scale > 0.0))
+    return 0.0;
+  return std::max({ std::abs(a.F_x - b.F_x), std::abs(a.F_y - b.F_y), std::abs(a.M_z - b.M_z) / p.a }) / scale;
+}
+
+// The longest travel through the patch from the leading to the trailing edge: 2a on straight paths; an arc
+// about a tilting centre at |R_gamma| >= a is at most pi/2 times its chord (the half circle), so pi a.
+double longestPath(const BrushParameters& p)
+{
+  return p.tilt ? boost::math::double_constants::pi * p.a : 2.0 * p.a;
+}
+}  // namespace
+
+BrushAuto::BrushAuto(const BrushParameters& parameters)
+  : BrushModel(parameters), linear_(parameters), steady_(parameters), lag_(2.0 * parameters.a)
+{
+  transient_resolution_ = std::min(p_.resolution, kMaxTransientResolution);
+  transient_ = std::make_unique<BrushTransient>(withResolution(p_, transient_resolution_));
+}
+
+void BrushAuto::rotateFrame(double alpha)
+{
+  transient_->rotateFrame(alpha);
+  if (finer_)
+    finer_->rotateFrame(alpha);
+  // a force, physical, in the turned axes (x' = R(-alpha) x)
+  const double c = std::cos(alpha), s = std::sin(alpha);
+  lag_.rotate(alpha);
+  const Eigen::Vector2d offset(c * offset_.F_x + s * offset_.F_y, -s * offset_.F_x + c * offset_.F_y);
+  offset_.F_x = offset.x();
+  offset_.F_y = offset.y();
+}
+
+void BrushAuto::reset()
+{
+  transient_->reset();
+  finer_.reset();
+  in_transient_ = false;
+  steady_distance_ = 0.0;
+  lag_.reset();
+  have_rolling_ = false;
+  offset_ = BrushForces{};
+  answered_ = false;
+}
+
+void BrushAuto::stepLag(const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame, double target,
+                        bool steady_exists, double travel)
+{
+  // The linear forces where they are within a quarter of the target of the steady ones, split into what the
+  // slips and what the spin drive (SteadyLag weighs each by its own memory; for adhesion the lag is then
+  // exact); else the steady model to a quarter of the target, kept for the answer. The lag needs the forces
+  // that actually change: the linear force clipped at mu F_z, or any simple saturation law, missed a robot
+  // accelerating out of a spinning skid (the force fell by a tenth of mu F_z per message while the clipped one
+  // stood still), measured over random histories.
+  steady_cached_ = false;
+  const auto toPatch = [&](double F_x, double F_y, double M_z) {
+    BrushForces f;
+    f.F_x = F_x;
+    f.F_y = F_y;
+    frame.forcesToPatch(f);
+    return Eigen::Vector3d(f.F_x, f.F_y, M_z / p_.a);
+  };
+  Eigen::Vector3d slip, spin = Eigen::Vector3d::Zero();
+  bool split = false;
+  const double limit = p_.mu * p_.F_z;
+  // which drive made the change since the last step, in the linear theory's forces
+  const Eigen::Vector2d d_sigma = sigma - last_lag_sigma_;
+  const double d_slip = linear_.C_sigma() * d_sigma.norm(), d_spin = linear_.C_phi() * std::abs(s.phi - last_lag_phi_);
+  const double spin_share = d_slip + d_spin > 0.0 ? d_spin / (d_slip + d_spin) : 1.0;
+  last_lag_sigma_ = sigma;
+  last_lag_phi_ = s.phi;
+  if (!steady_exists || linear_bound_ <= 0.25 * target)
+  {
+    // eqs. 61-62 by drive, scaled back together onto the friction circle like BrushLinear (then not split)
+    const Eigen::Vector2d F_slip = linear_.C_sigma() * sigma;
+    const double F_spin = linear_.C_phi() * s.phi;
+    const double M_slip = -linear_.C_Msigma_y() * sigma.y(), M_spin = linear_.C_Mphi() * s.phi;
+    const double norm = std::hypot(F_slip.x(), F_slip.y() + F_spin);
+    const double scale = norm > limit && norm > 0.0 ? limit / norm : 1.0;
+    slip = scale * toPatch(F_slip.x(), F_slip.y(), M_slip);
+    spin = scale * toPatch(0.0, F_spin, M_spin);
+    split = scale == 1.0;
+  }
+  else
+  {
+    BrushSteady::Stats stats;
+    steady_cache_ = steady_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi, 0.25 * target, &stats);
+    cost_ += kSteadyPathCost * stats.paths;
+    steady_cached_ = true;
+    slip = toPatch(steady_cache_.F_x, steady_cache_.F_y, steady_cache_.M_z);
+  }
+  lag_.step(slip, spin, split, spin_share, travel, linear_bound_);
+}
+
+BrushForces BrushAuto::steadyFamily(const Slips& s, const Eigen::Vector2d& sigma, double budget, BrushModelKind& model)
+{
+  // the linear model's bound at the largest inputs the patch still remembers: a lagging state carries the
+  // sliding of its past inputs, which the bound at the current ones may understate
+  const double bound = std::max(linear_bound_, lag_.largestHeld());
+  if (bound <= budget)
+  {
+    model = BrushModelKind::Linear;
+    cost_ += kLinearCost;
+    BrushForces f = linear_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi);
+    f.error_estimate = std::max(f.error_estimate, bound);
+    return f;
+  }
+  model = BrushModelKind::Steady;
+  if (steady_cached_ && steady_cache_.error_estimate <= budget)
+    return steady_cache_;  // evaluated for the lag, to a quarter of the target
+  BrushSteady::Stats stats;
+  const BrushForces f = steady_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi, budget, &stats);
+  cost_ += kSteadyPathCost * stats.paths;
+  return f;
+}
+
+void BrushAuto::enterTransient()
+{
+  // Warm start: the bristles in the steady state of the last rolling inputs before this step (2.5 transits), so
+  // the transient model takes over where the steady one was and then rolls this step under the new inputs; at
+  // the finer resolution asked for last time.
+  if (pending_resolution_ > transient_resolution_)
+  {
+    transient_resolution_ = pending_resolution_;
+    transient_->setParameters(withResolution(p_, transient_resolution_));
+  }
+  transient_->reset();
+  if (have_rolling_)
+  {
+    const double V = last_rolling_.V_r.norm();
+    transient_->update(last_rolling_, 2.5 * longestPath(p_) / V);
+    cost_ += transientStepCost(transient_resolution_) * std::ceil(5.0 * transient_resolution_);
+  }
+  in_transient_ = true;
+  steady_distance_ = 0.0;
+  // the warm start is the steady state of the last inputs, which the true state lagged by at most the lag then
+  // (the steady family's answer accepted it); only renewed bristles forget that
+  entry_error_ = last_lag_;
+}
+
+BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
+{
+  checkInput(kin, dt);
+  const Slips s = computeSlips(kin, p_.standstill_speed);
+  last_slips_ = s;
+  const double target = p_.accuracy_target;
+  const BrushModelKind before = last_model_;
+  const int before_resolution = last_resolution_;
+  const RollingFrame frame(s.defined ? s.epsilon : Eigen::Vector2d(0.0, 1.0));
+  const Eigen::Vector2d sigma = s.defined ? frame.toRolling(s.sigma) : Eigen::Vector2d::Zero();
+
+  const SteadyCheck check = checkSteady(s, sigma, frame, dt, target);
+  chooseFamily(kin, s, dt, check);
+  BrushForces out;
+  BrushModelKind model;
+  int resolution = 0;
+  if (in_transient_)
+  {
+    out = transientAnswer(kin, s, dt, target, resolution);
+    model = BrushModelKind::Transient;
+  }
+  else
+  {
+    out = steadyFamily(s, sigma, target - check.lag, model);
+    out.error_estimate += check.lag;
+    frame.forcesToPatch(out);
+  }
+  carryAcrossSwitches(out, s, sigma, frame, dt, before, before_resolution, model, resolution);
+  out.flags &= ~brush_flags::kLinearSaturated;  // auto never publishes a saturated linear answer as such
+  if (out.error_estimate > target)
+    out.flags |= brush_flags::kAccuracyNotMet;
+  else
+    out.flags &= ~brush_flags::kAccuracyNotMet;
+  last_model_ = model;
+  last_resolution_ = resolution;
+  answered_ = true;
+  return out;
+}
+
+BrushAuto::SteadyCheck BrushAuto::checkSteady(const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame,
+                                              double dt, double target)
+{
+  // Conditions under which a steady state describes the contact, and the lag of that state.
+  steady_cached_ = false;
+  SteadyCheck c;
+  c.steady = s.defined;
+  if (!s.defined)
+  {
+    lag_.reset();
+    return c;
+  }
+  if (p_.tilt && std::abs(s.phi_gamma) * p_.a > 1.0)
+    c.steady = false;  // |R_gamma| < a: no steady state on an inner disc
+  c.renewed = s.V_r * dt >= longestPath(p_);
+  // the lag of the steady state behind the true one, from the changes of the steady forces
+  const double limit = p_.mu * p_.F_z;
+  linear_bound_ = BrushLinear::errorBound(p_, sigma, s.phi, s.phi_gamma, s.phi_psi);
+  // with tilt the paths are arcs about the tilting centre, longer than their chords: the central one by
+  // (|R_gamma| / a) asin(a / |R_gamma|), up to pi / 2; the patch renews that much more slowly
+  double stretch = 1.0;
+  const double a_phi_gamma = std::abs(s.phi_gamma) * p_.a;
+  if (p_.tilt && a_phi_gamma > 0.0)
+    stretch = a_phi_gamma < 1.0 ? std::asin(a_phi_gamma) / a_phi_gamma : 0.5 * boost::math::double_constants::pi;
+  stepLag(s, sigma, frame, target, c.steady, s.V_r * dt / stretch);
+  c.lag = limit > 0.0 ? lag_.lag() / limit : 0.0;
+  if (!(c.lag <= 0.5 * target))
+    c.steady = false;
+  return c;
+}
+
+void BrushAuto::chooseFamily(const ContactKinematics& kin, const Slips& s, double dt, const SteadyCheck& check)
+{
+  // the transient model is left only once the steady conditions have held for a transit (or one step rolled
+  // it: every bristle then entered under these inputs, so the state is exactly the steady one)
+  if (in_transient_ && check.steady)
+  {
+    steady_distance_ += s.V_r * dt;
+    if (check.renewed || steady_distance_ >= longestPath(p_))
+    {
+      in_transient_ = false;  // its state is the steady one now
+      finer_.reset();
+    }
+  }
+  else if (in_transient_)
+    steady_distance_ = 0.0;
+  else if (!check.steady)
+    enterTransient();  // from the state before this step
+  if (s.defined)
+  {
+    last_rolling_ = kin;
+    have_rolling_ = true;
+    last_lag_ = check.lag;
+  }
+}
+
+BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips& s, double dt, double target,
+                                       int& resolution)
+{
+  BrushForces out = transient_->update(kin, dt);
+  entry_error_ *= lag_.memory(s.V_r * dt / (0.5 * longestPath(p_) / p_.a));  // the slowest renewal
+  out.error_estimate += entry_error_;
+  resolution = transient_resolution_;
+  cost_ += transientStepCost(resolution) * std::max(1.0, std::ceil(s.V_r * dt / (p_.a / resolution)));
+  // A missed target asks for twice the resolution. Rolling, a finer lattice starts beside this one (warm, in
+  // the steady state of these inputs) and takes over once it has rolled the longest path: then every bristle
+  // on it entered under inputs it followed, so it holds nothing of its start. Interpolating the state onto the
+  // finer lattice instead was wrong near a spin pole, where the sliding direction turns within a spacing, by
+  // 7 % of mu F_z a transit later on random histories. At standstill nothing renews a state: the finer lattice
+  // waits for the next entry into the transient model, and the estimate meanwhile says that the target is
+  // missed.
+  if (finer_)
+  {
+    finer_->update(kin, dt);
+    cost_ += transientStepCost(2 * resolution) * std::max(1.0, std::ceil(s.V_r * dt / (p_.a / (2 * resolution))));
+    finer_travel_ += s.V_r * dt;
+    if (finer_travel_ >= longestPath(p_))
+    {
+      // continuity: the coarse answer's difference from the finer one is carried and decays like any switch
+      const BrushForces fine = finer_->forces();
+      offset_.F_x += out.F_x - fine.F_x;
+      offset_.F_y += out.F_y - fine.F_y;
+      offset_.M_z += out.M_z - fine.M_z;
+      const double entry = entry_error_;
+      out = fine;
+      out.error_estimate += entry;
+      transient_ = std::move(finer_);
+      transient_resolution_ = resolution = 2 * resolution;
+    }
+  }
+  else if ((out.error_estimate > target || pending_resolution_ > transient_resolution_) &&
+           transient_resolution_ < kMaxTransientResolution)
+  {
+    const int finer = std::min(2 * transient_resolution_, kMaxTransientResolution);
+    if (s.defined)
+    {
+      finer_ = std::make_unique<BrushTransient>(withResolution(p_, finer));  // rare: it allocates
+      finer_->update(kin, 2.5 * longestPath(p_) / s.V_r);
+      cost_ += transientStepCost(finer) * std::ceil(5.0 * finer);
+      finer_travel_ = 0.0;
+    }
+    else
+      pending_resolution_ = finer;
+  }
+  return out;
+}
+
+void BrushAuto::carryAcrossSwitches(BrushForces& out, const Slips& s, const Eigen::Vector2d& sigma,
+                                    const RollingFrame& frame, double dt, BrushModelKind before, int before_resolution,
+                                    BrushModelKind model, int resolution)
+{
+  // Continuity: at a switch, carry the difference from the previous model's answer and let it decay (the first
+  // answer after a reset has nothing to be continuous with).
+  const double target = p_.accuracy_target;
+  if (answered_ && (model != before || resolution != before_resolution))
+  {
+    BrushForces previous = out;
+    if (before == BrushModelKind::Transient)
+      previous = transient_->forces();
+    else if (s.defined && before == BrushModelKind::Linear)
+    {
+      previous = linear_.evaluate(sigma, s.phi);
+      frame.forcesToPatch(previous);
+    }
+    else if (s.defined && before == BrushModelKind::Steady)
+    {
+      previous = steady_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi, std::max(0.5 * target, 1e-6));
+      frame.forcesToPatch(previous);
+    }
+    offset_.F_x += previous.F_x - out.F_x;
+    offset_.F_y += previous.F_y - out.F_y;
+    offset_.M_z += previous.M_z - out.M_z;
+  }
+  const double decay = s.V_r > 0.0 ? std::exp(-s.V_r * dt / (0.5 * p_.a)) : std::exp(-dt / 0.05);
+  offset_.F_x *= decay;
+  offset_.F_y *= decay;
+  offset_.M_z *= decay;
+  out.F_x += offset_.F_x;
+  out.F_y += offset_.F_y;
+  out.M_z += offset_.M_z;
+  out.error_estimate += distance(offset_, BrushForces{}, p_);
+  // the offset never takes the force off the friction circle
+  const double norm = std::hypot(out.F_x, out.F_y), limit = p_.mu * p_.F_z;
+  if (norm > limit && norm > 0.0)
+  {
+    out.F_x *= limit / norm;
+    out.F_y *= limit / norm;
+  }
+}
+
+void BrushAuto::visitBristles(const BristleVisitor& visit) const
+{
+  if (last_model_ == BrushModelKind::Transient && transient_)
+    transient_->visitBristles(visit);
+  else
+    steady_.visitBristles(last_slips_, visit);
+}
+
+}  // namespace sphere_contact_estimator

@@ -1,0 +1,23 @@
+#include "sphere_contact_estimator/core/brush/brush_forces.h"
+
+namespace sphere_contact_estimator::brush_flags
+{
+std::vector<std::string> describe(std::uint32_t flags)
+{
+  std::vector<std::string> out;
+  if (flags & kStandstill)
+    out.emplace_back("rolling speed below the standstill threshold: slips (eq. 12) are undefined, the steady "
+                     "models do not apply; use the transient model");
+  if (flags & kNoSteadyStateTilt)
+    out.emplace_back("tilting radius |R_gamma| < a: no steady state on an inner disc of the patch (Assumption 4.1, "
+                     "Fig. 2); use the transient model");
+  if (flags & kLinearSaturated)
+    out.emplace_back("linear model beyond the friction limit: |F_t| scaled back to mu F_z; the linear theory "
+                     "assumes vanishing sliding, use the steady or transient model");
+  if (flags & kAccuracyNotMet)
+    out.emplace_back("the accuracy target was not met within the evaluation budget: see error_estimate");
+  if (flags & kSubstepsTruncated)
+    out.emplace_back("transient step longer than the substep budget: integrated with coarser substeps");
+  return out;
+}
+}  // namespace sphere_contact_estimator::brush_flags

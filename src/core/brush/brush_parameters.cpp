@@ -1,0 +1,97 @@
+#include "sphere_contact_estimator/core/brush/brush_parameters.h"
+#include "sphere_contact_estimator/core/numerics/parameter_check.h"
+
+// STL
+#include <cmath>
+#include <stdexcept>
+
+// Boost
+#include <boost/math/constants/constants.hpp>
+
+namespace sphere_contact_estimator
+{
+namespace
+{
+using boost::math::double_constants::pi;
+
+void require(bool ok, const char* name, double value, const char* rule)
+{
+  detail::requireParameter(ok, "brush ", name, value, rule);
+}
+}  // namespace
+
+const char* toString(PressureDistribution pressure)
+{
+  switch (pressure)
+  {
+    case PressureDistribution::Parabolic:
+      return "parabolic";
+    case PressureDistribution::Hertzian:
+      return "hertzian";
+    case PressureDistribution::Uniform:
+      return "uniform";
+  }
+  return "unknown";
+}
+
+double peakFactor(PressureDistribution pressure)
+{
+  switch (pressure)
+  {
+    case PressureDistribution::Parabolic:
+      return 2.0;
+    case PressureDistribution::Hertzian:
+      return 1.5;
+    case PressureDistribution::Uniform:
+      return 1.0;
+  }
+  return 1.0;
+}
+
+void BrushParameters::validate() const
+{
+  const auto finite = [](double x) { return std::isfinite(x); };
+  require(finite(a) && a > 0.0 && a <= 1e3, "patch radius a", a, "finite, > 0 and <= 1e3 [m]");
+  require(finite(k) && k > 0.0 && k <= 1e20, "bristle stiffness k", k, "finite, > 0 and <= 1e20 [N/m^3]");
+  require(finite(F_z) && F_z >= 0.0 && F_z <= 1e12, "load F_z", F_z, "finite, >= 0 and <= 1e12 [N]");
+  require(finite(mu) && mu >= 0.0 && mu <= 1e6, "friction mu", mu, "finite, >= 0 and <= 1e6");
+  require(resolution >= 2 && resolution <= 1024, "resolution", resolution, "between 2 and 1024");
+  require(finite(standstill_speed) && standstill_speed > 0.0, "standstill speed", standstill_speed,
+          "finite and > 0 [m/s]");
+  require(finite(accuracy_target) && accuracy_target > 0.0 && accuracy_target <= 1.0, "accuracy target",
+          accuracy_target, "in (0, 1] (relative to mu F_z)");
+}
+
+double BrushParameters::qz(double r2) const
+{
+  const double t = 1.0 - r2 / (a * a);
+  if (t <= 0.0)
+    return 0.0;
+  const double peak = peakFactor(pressure) * F_z / (pi * a * a);
+  switch (pressure)
+  {
+    case PressureDistribution::Parabolic:
+      return peak * t;
+    case PressureDistribution::Hertzian:
+      return peak * std::sqrt(t);
+    case PressureDistribution::Uniform:
+      return peak;
+  }
+  return 0.0;
+}
+
+bool operator==(const BrushParameters& a, const BrushParameters& b)
+{
+  return a.a == b.a && a.k == b.k && a.F_z == b.F_z && a.mu == b.mu && a.pressure == b.pressure && a.tilt == b.tilt &&
+         a.resolution == b.resolution && a.standstill_speed == b.standstill_speed &&
+         a.accuracy_target == b.accuracy_target;
+}
+
+double contactRadiusHertz(double F_z, double R, double E_star)
+{
+  if (!(std::isfinite(F_z) && F_z >= 0.0 && std::isfinite(R) && R > 0.0 && std::isfinite(E_star) && E_star > 0.0))
+    throw std::invalid_argument("Hertz contact radius needs F_z >= 0, R > 0 and E* > 0, all finite");
+  return std::cbrt(3.0 * F_z * R / (4.0 * E_star));
+}
+
+}  // namespace sphere_contact_estimator

@@ -1,0 +1,430 @@
+#include "sphere_contact_estimator/core/brush/patch_integral.h"
+
+// STL
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+// Boost
+#include <boost/math/constants/constants.hpp>
+
+// Package
+#include "sphere_contact_estimator/core/numerics/polynomial_roots.h"
+#include "sphere_contact_estimator/core/numerics/quadrature_rules.h"
+
+namespace sphere_contact_estimator
+{
+namespace
+{
+using boost::math::double_constants::half_pi;
+using boost::math::double_constants::pi;
+
+constexpr int kMaxIntervals = 512;
+constexpr int kMaxGaps = 64;
+constexpr int kMaxMixedDepth = 4;
+// |weight * path integral| for any path and component: path travel <= pi, |u| <= 1, |z| <= 1, weight <= 2
+constexpr double kIntegrandBound = 2.0 * pi;
+
+// A sign change of a continuous g between a (g >= 0) and b (g < 0), by the Illinois variant of regula falsi.
+template <class G>
+double solveSignChange(const G& g, double a, double b)
+{
+  double fa = g(a), fb = g(b);
+  for (int it = 0; it < 100 && std::abs(b - a) > 1e-13; ++it)
+  {
+    const double t = (fa - fb) != 0.0 ? b - fb * (b - a) / (fb - fa) : 0.5 * (a + b);
+    const double ft = g(t);
+    if (ft == 0.0)
+      return t;
+    if ((ft >= 0.0) == (fb >= 0.0))
+    {
+      b = t, fb = ft;
+      fa *= 0.5;
+    }
+    else
+    {
+      a = b, fa = fb;
+      b = t, fb = ft;
+    }
+  }
+  return 0.5 * (a + b);
+}
+
+// Plain data, set when pushed: the integrator holds 512 of them, not cleared per evaluation.
+struct Interval
+{
+  double a, b;
+  double K[4];  // Kronrod sums of force x, y, moment, sliding area
+  double E[3];  // error bounds of the first three
+  bool gap;     // a located change of structure: bounded, never refined
+  double priority() const { return gap ? -1.0 : std::max({ E[0], E[1], E[2] }); }
+};
+
+class Integrator
+{
+public:
+  Integrator(const BristleField& field, double tolerance, int max_paths)
+    : f_(field), tol_(tolerance), max_paths_(max_paths), path_tol_(std::max(1e-14, 1e-2 * tolerance))
+  {
+    // where two structures meet, bisection stops at a width whose bound is a small part of the tolerance
+    delta_ = std::max(1e-13, 1e-3 * tolerance / (2.0 * kIntegrandBound));
+  }
+
+  PatchIntegral run()
+  {
+    double cuts[16];
+    const int nc = structureBreakpoints(f_, cuts, 16);
+    double from = -half_pi;
+    for (int i = 0; i <= nc; ++i)
+    {
+      const double to = i < nc ? cuts[i] : half_pi;
+      if (to - from > 1e-14)
+        add(from, to, 0);
+      from = to;
+    }
+    while (estimate() > tol_ && paths_ < max_paths_ && n_ + 2 * kMaxGaps < kMaxIntervals)
+    {
+      int worst = -1;
+      double p = 0.0;
+      for (int i = 0; i < n_; ++i)
+        if (iv_[i].priority() > p && iv_[i].b - iv_[i].a > 1e-13)
+          p = iv_[i].priority(), worst = i;
+      if (worst < 0)
+        break;
+      const Interval split = iv_[worst];
+      iv_[worst] = iv_[--n_];
+      const double mid = 0.5 * (split.a + split.b);
+      add(split.a, mid, 0);
+      add(mid, split.b, 0);
+    }
+    PatchIntegral out;
+    double K[4] = {};
+    for (int i = 0; i < n_; ++i)
+      for (int c = 0; c < 4; ++c)
+        K[c] += iv_[i].K[c];
+    out.force = { K[0], K[1] };
+    out.moment = K[2];
+    out.sliding_area = K[3];
+    out.utilisation2 = util2_;
+    out.error = estimate();
+    out.paths = paths_;
+    out.converged = out.error <= tol_;
+    return out;
+  }
+
+private:
+  struct Sample
+  {
+    double theta;
+    double v[4];
+    double error;
+    std::uint64_t signature;
+    double margin;
+  };
+
+  Sample solve(double theta)
+  {
+    ++paths_;
+    const BristlePath path = BristlePath::across(f_, theta);
+    const PathIntegrals r = solvePath(f_, path, path_tol_);
+    util2_ = std::max(util2_, r.utilisation2);
+    Sample s;
+    s.theta = theta;
+    const double J = path.weight;
+    s.v[0] = J * r.force.real();
+    s.v[1] = J * r.force.imag();
+    s.v[2] = J * r.moment;
+    s.v[3] = J * r.sliding;
+    // a path whose series budget ran out is not resolved: bound it by the integrand's bound
+    s.error = J * (r.truncated ? kIntegrandBound : r.error);
+    s.signature = r.signature;
+    s.margin = r.onset_margin;
+    return s;
+  }
+
+  double estimate() const
+  {
+    double E[3] = {};
+    for (int i = 0; i < n_; ++i)
+      for (int c = 0; c < 3; ++c)
+        E[c] += iv_[i].E[c];
+    return std::max({ E[0], E[1], E[2] });
+  }
+
+  void push(const Interval& v)
+  {
+    if (n_ < kMaxIntervals)
+      iv_[n_++] = v;
+  }
+
+  // Kronrod rule on [a, b]; where its nodes disagree on the event structure, the changes are located and the
+  // pieces between them integrated on their own.
+  void add(double a, double b, int depth)
+  {
+    const numerics::GaussKronrod15& rule = numerics::gaussKronrod15();
+    const double half = 0.5 * (b - a), mid = 0.5 * (a + b);
+    std::array<Sample, 16> s;  // the 15 nodes, and a probe between them if their margins ask for one
+    int count = 15;
+    for (int i = 0; i < 15; ++i)
+      s[i] = solve(mid + half * rule.x[i]);
+    bool uniform = true;
+    for (int i = 0; i + 1 < 15; ++i)
+      uniform = uniform && s[i].signature == s[i + 1].signature;
+    double probe = 0.0;
+    if (uniform && hiddenChange(s, probe))
+    {
+      // a band of other structure between two nodes: confirm it with a path there
+      s[count++] = solve(mid + half * probe);
+      uniform = s[15].signature == s[0].signature;
+    }
+    if (!uniform && depth < kMaxMixedDepth)
+    {
+      // the changes between neighbouring samples, each to a gap narrower than delta_
+      std::array<Sample, 16> sorted = s;
+      std::sort(sorted.begin(), sorted.begin() + count, [](const Sample& x, const Sample& y) { return x.theta < y.theta; });
+      std::array<std::pair<Sample, Sample>, kMaxGaps> gaps;
+      int ng = 0;
+      for (int i = 0; i + 1 < count; ++i)
+        if (sorted[i].signature != sorted[i + 1].signature)
+          locate(sorted[i], sorted[i + 1], gaps.data(), ng);
+      double from = a;
+      for (int k = 0; k < ng; ++k)
+      {
+        if (gaps[k].first.theta > from)
+          add(from, gaps[k].first.theta, depth + 1);
+        Interval g{};
+        g.a = gaps[k].first.theta;
+        g.b = gaps[k].second.theta;
+        g.gap = true;
+        const double w = g.b - g.a;
+        for (int c = 0; c < 4; ++c)
+          g.K[c] = 0.5 * w * (gaps[k].first.v[c] + gaps[k].second.v[c]);
+        for (int c = 0; c < 3; ++c)
+          g.E[c] = 2.0 * w * kIntegrandBound;
+        push(g);
+        from = g.b;
+      }
+      if (b > from)
+        add(from, b, depth + 1);
+      return;
+    }
+    Interval v{};
+    v.a = a;
+    v.b = b;
+    double G[3] = {}, path_error = 0.0;
+    for (int i = 0; i < 15; ++i)  // the rule's nodes, in its order
+    {
+      for (int c = 0; c < 4; ++c)
+        v.K[c] += half * rule.wk[i] * s[i].v[c];
+      for (int c = 0; c < 3; ++c)
+        G[c] += half * rule.wg[i] * s[i].v[c];
+      path_error += half * rule.wk[i] * s[i].error;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      v.E[c] = std::abs(v.K[c] - G[c]) + path_error;
+      if (!uniform)  // a change of structure left inside: the rigorous bound of any rule on a bounded integrand
+        v.E[c] = std::max(v.E[c], 2.0 * (b - a) * kIntegrandBound);
+    }
+    push(v);
+  }
+
+  // The nodes agree on the structure, and their margins (smooth across paths) all have one sign: does the
+  // margins' interpolant change sign between them? Then returns where it is furthest on the other side.
+  bool hiddenChange(const std::array<Sample, 16>& s, double& probe) const
+  {
+    if (f_.pressure != PressureDistribution::Uniform)
+      return false;
+    const numerics::GaussKronrod15& rule = numerics::gaussKronrod15();
+    static const std::array<double, 15> weights = [] {  // barycentric weights of the nodes
+      const numerics::GaussKronrod15& r = numerics::gaussKronrod15();
+      std::array<double, 15> w;
+      for (int j = 0; j < 15; ++j)
+      {
+        w[j] = 1.0;
+        for (int k = 0; k < 15; ++k)
+          if (k != j)
+            w[j] /= r.x[j] - r.x[k];
+      }
+      return w;
+    }();
+    const bool positive = s[0].margin > 0.0;
+    for (int i = 1; i < 15; ++i)
+      if ((s[i].margin > 0.0) != positive)
+        return false;  // the signatures would have told
+    double best = 0.0;
+    for (int k = 0; k < 64; ++k)
+    {
+      const double x = -1.0 + (k + 0.5) / 32.0;
+      double num = 0.0, den = 0.0;
+      for (int j = 0; j < 15; ++j)
+      {
+        const double t = weights[j] / (x - rule.x[j]);
+        num += t * s[j].margin;
+        den += t;
+      }
+      const double value = (positive ? -1.0 : 1.0) * num / den;
+      if (value > best)
+        best = value, probe = x;
+    }
+    return best > 0.0;
+  }
+
+  // Bisection on the event structure between two samples that differ, down to delta_.
+  void locate(const Sample& lo, const Sample& hi, std::pair<Sample, Sample>* gaps, int& ng)
+  {
+    if (ng >= kMaxGaps)
+      return;
+    if (hi.theta - lo.theta <= delta_)
+    {
+      gaps[ng++] = { lo, hi };
+      return;
+    }
+    const Sample m = solve(0.5 * (lo.theta + hi.theta));
+    if (m.signature == lo.signature)
+      locate(m, hi, gaps, ng);
+    else if (m.signature == hi.signature)
+      locate(lo, m, gaps, ng);
+    else
+    {
+      locate(lo, m, gaps, ng);
+      locate(m, hi, gaps, ng);
+    }
+  }
+
+  const BristleField& f_;
+  double tol_;
+  int max_paths_;
+  double path_tol_, delta_;
+  std::array<Interval, kMaxIntervals> iv_;
+  int n_ = 0;
+  int paths_ = 0;
+  double util2_ = 0.0;
+};
+}  // namespace
+
+bool polePath(const BristleField& field, double& theta)
+{
+  if (field.phi == 0.0)
+    return false;
+  const std::complex<double> zp = field.pole();
+  if (std::norm(zp) >= 1.0)
+    return false;
+  const double y0 = pathThrough(field, zp);
+  if (!(std::abs(y0) < 1.0))
+    return false;
+  theta = std::asin(y0);
+  return true;
+}
+
+int structureBreakpoints(const BristleField& field, double* theta, int max_count)
+{
+  int n = 0;
+  const auto add = [&](double t) {
+    if (n < max_count && t > -half_pi && t < half_pi)
+      theta[n++] = t;
+  };
+  double theta_p = 0.0;
+  const bool pole = polePath(field, theta_p);
+  if (pole)
+    add(theta_p);
+  if (field.pressure == PressureDistribution::Uniform)
+    return n;
+  const auto peak = [&](double t) { return reAdhesionPeak(field, BristlePath::across(field, t)); };
+  const auto count = [&](double t) { return reAdhesionCount(field, BristlePath::across(field, t)); };
+  // G around the pole (the drive vanishes there, so a front-half pole is in G): where the paths stop meeting
+  // it, on either side of the pole's path. With the parabolic pressure G is one conic region, and the largest
+  // margin along a path changes sign there (regula falsi); with the Hertzian pressure G also holds a band
+  // along the whole leading edge, so the number of G stretches along the path tells, located by bisection.
+  // Doubling steps out from the pole's path find the first change on each side.
+  if (pole && field.pole().real() > 0.0)
+    for (int side = -1; side <= 1; side += 2)
+    {
+      const double edge = side * half_pi;
+      const int c0 = count(theta_p);
+      const bool conic = field.pressure == PressureDistribution::Parabolic;
+      if (conic && peak(theta_p) < 0.0)
+        break;
+      double inside = theta_p, step = 1e-4, outside = NAN;
+      for (int k = 0; k < 60; ++k, step *= 2.0)
+      {
+        const double t = theta_p + side * step;
+        if ((edge - t) * side <= 0.0)
+          break;
+        if (conic ? peak(t) < 0.0 : count(t) != c0)
+        {
+          outside = t;
+          break;
+        }
+        inside = t;
+      }
+      if (std::isnan(outside))
+        continue;
+      if (conic)
+        add(solveSignChange(peak, inside, outside));
+      else
+      {
+        for (int k = 0; k < 50 && std::abs(outside - inside) > 1e-12; ++k)
+        {
+          const double m = 0.5 * (inside + outside);
+          (count(m) == c0 ? inside : outside) = m;
+        }
+        add(0.5 * (inside + outside));
+      }
+    }
+  // G meeting the leading edge (parabolic pressure; the Hertzian's G holds the whole front edge): the margin
+  // on the edge z = e^{i psi} is a quartic in t = tan(psi / 2) after multiplying by (1 + t^2)^2
+  if (field.pressure == PressureDistribution::Parabolic)
+  {
+    const double sx = field.sigma.real(), sy = field.sigma.imag(), ph = field.phi;
+    const double S = std::norm(field.sigma) + ph * ph;
+    const double c[5] = { 4.0 - S - 2.0 * ph * sy, 4.0 * ph * sx, -8.0 - 2.0 * S, 4.0 * ph * sx, 4.0 - S + 2.0 * ph * sy };
+    double t[4];
+    const int k = numerics::signChanges(c, 4, -1.0, 1.0, t, 4);
+    for (int i = 0; i < k; ++i)
+    {
+      const double psi = 2.0 * std::atan(t[i]);
+      const double y0 = pathThrough(field, std::polar(1.0, psi));
+      if (std::abs(y0) < 1.0)
+        add(std::asin(y0));
+    }
+  }
+  std::sort(theta, theta + n);
+  return n;
+}
+
+int reAdhesionBands(const BristleField& field, double* lo, double* hi, int max_count)
+{
+  double cuts[18];
+  cuts[0] = -half_pi;
+  const int nb = structureBreakpoints(field, cuts + 1, 16);
+  cuts[nb + 1] = half_pi;
+  int counts[17];
+  for (int i = 0; i <= nb; ++i)
+    counts[i] = reAdhesionCount(field, BristlePath::across(field, 0.5 * (cuts[i] + cuts[i + 1])));
+  // runs of sub-intervals with the same count (the pole's path splits G's component in two), then the runs
+  // that cross more stretches of G than both runs beside them
+  int n = 0;
+  for (int i = 0; i <= nb && n < max_count;)
+  {
+    int j = i;
+    while (j < nb && counts[j + 1] == counts[i])
+      ++j;
+    if (counts[i] > (i > 0 ? counts[i - 1] : 0) && counts[i] > (j < nb ? counts[j + 1] : 0))
+    {
+      lo[n] = cuts[i];
+      hi[n] = cuts[j + 1];
+      ++n;
+    }
+    i = j + 1;
+  }
+  return n;
+}
+
+PatchIntegral integratePatch(const BristleField& field, double tolerance, int max_paths)
+{
+  Integrator integrator(field, tolerance, max_paths);
+  return integrator.run();
+}
+
+}  // namespace sphere_contact_estimator

@@ -1,0 +1,272 @@
+#include "sphere_contact_estimator/core/estimator/contact_estimator.h"
+
+// Package
+#include "sphere_contact_estimator/core/estimator/paper_frame.h"
+
+// STL
+#include <chrono>
+#include <cmath>
+
+// Boost
+#include <boost/math/constants/constants.hpp>
+
+namespace sphere_contact_estimator
+{
+namespace
+{
+using boost::math::double_constants::pi;
+
+double wrap(double angle)
+{
+  return std::remainder(angle, 2.0 * pi);
+}
+
+}  // namespace
+
+bool ContactEstimateData::valid() const
+{
+  return (brush_model == BrushModelKind::Off || brush.valid()) &&
+         (rolling_resistance_model == CylinderModelKind::Off || rolling_resistance.valid());
+}
+
+ContactEstimator::ContactEstimator(const EstimatorSettings& settings)
+{
+  settings.validate();
+  rebuildBrush(settings);
+  rebuildCylinder(settings);
+  settings_ = settings;
+  adopt();
+}
+
+void ContactEstimator::adopt()
+{
+  // the scene's patch and load, whether or not a brush model runs (the markers draw them)
+  const BrushParameters p = settings_.brushParameters();
+  patch_radius_ = p.a;
+  load_ = p.F_z;
+}
+
+void ContactEstimator::configure(const EstimatorSettings& next)
+{
+  next.validate();
+  // build first, so that a failure (e.g. a table that cannot be built) leaves everything as it was
+  const bool brush_changes = next.brush_model != settings_.brush_model ||
+                             (next.brush_model != BrushModelKind::Off && next.brushParameters() != settings_.brushParameters());
+  const bool cylinder_changes =
+      next.rolling_resistance_model != settings_.rolling_resistance_model ||
+      (next.rolling_resistance_model != CylinderModelKind::Off &&
+       next.cylinderParameters() != settings_.cylinderParameters());
+  if (cylinder_changes)
+    rebuildCylinder(next);
+  if (brush_changes)
+    rebuildBrush(next);
+  settings_ = next;
+  adopt();
+}
+
+void ContactEstimator::rebuildBrush(const EstimatorSettings& next)
+{
+  if (next.brush_model == BrushModelKind::Off)
+  {
+    brush_.reset();
+    return;
+  }
+  // a model that can keeps its state through a retune (the transient bristles)
+  if (brush_ && next.brush_model == settings_.brush_model && brush_->retune(next.brushParameters()))
+    return;
+  brush_ = makeBrushModel(next.brush_model, next.brushParameters());
+}
+
+void ContactEstimator::rebuildCylinder(const EstimatorSettings& next)
+{
+  cylinder_ = makeCylinderModel(next.rolling_resistance_model, next.cylinderParameters());  // none for Off
+}
+
+void ContactEstimator::reset()
+{
+  have_last_ = false;
+  was_rolling_ = false;
+  heading_ = 0.0;
+  turn_rate_ = 0.0;
+  if (brush_)
+    brush_->reset();
+}
+
+bool ContactEstimator::slipsRepresentable(const EstimatorInput& in, const Eigen::Vector2d& V_r, double speed) const
+{
+  // The slips divide by V_r: past the standstill speed (which may be tiny) the ratios must stay finite, the
+  // turn rate's included (at most pi per kMinStep); fuzz_estimator found omega_z = -2e307 rad/s at V_r = 2 mm/s.
+  if (speed < settings_.standstill_speed)
+    return true;
+  const double V_s = (in.v_contact.head<2>() - V_r).norm();
+  const double turn = std::abs(in.omega.z()) * (1.0 + std::abs(1.0 - settings_.tilt_ratio)) + pi / kMinStep;
+  return std::isfinite(V_s / speed) && std::isfinite(turn / speed);
+}
+
+bool ContactEstimator::acceptable(const EstimatorInput& in, const Eigen::Vector2d& V_r, double speed) const
+{
+  const double R = settings_.rolling_radius;
+  return std::isfinite(in.stamp) && in.omega.allFinite() && in.v_contact.allFinite() && speed <= CylinderModel::kMaxSpeed &&
+         in.v_contact.norm() <= CylinderModel::kMaxSpeed && in.omega.norm() * R <= CylinderModel::kMaxSpeed &&
+         slipsRepresentable(in, V_r, speed);
+}
+
+const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
+{
+  const double R = settings_.rolling_radius;
+  const Eigen::Vector2d V_r(in.omega.y() * R, -in.omega.x() * R);  // pure rolling, ROS axes (docs/conventions.md)
+  const double speed = V_r.norm();
+  if (!acceptable(in, V_r, speed))
+    return nullptr;
+  const auto start = std::chrono::steady_clock::now();
+  ContactEstimateData& o = out_;
+  o.flags = 0;
+  o.stamp = in.stamp;
+  const bool first = !have_last_;
+  o.dt = advanceClock(in.stamp, o.flags);
+  followHeading(V_r, speed, o.dt, first, o.flags);
+  const double psi_dot =
+      settings_.tilt_ratio_source == TiltRatioSource::Fixed ? (1.0 - settings_.tilt_ratio) * in.omega.z() : turn_rate_;
+  o.heading = heading_;
+  o.turn_rate = psi_dot;
+  o.rolling_speed = speed;
+  const ContactKinematics kin = contactKinematics(in, psi_dot, o);
+  runBrush(kin, o.dt, in.omega.z(), o);
+  runRollingResistance(speed, o);
+  o.compute_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return &o;
+}
+
+double ContactEstimator::advanceClock(double stamp, std::uint32_t& flags)
+{
+  // message stamps only (sim time and bags alike), never the wall clock
+  double dt = 0.0;
+  if (have_last_)
+  {
+    const double gap = stamp - last_stamp_;
+    if (gap < 0.0)
+    {
+      reset();
+      flags |= estimate_flags::kTimeJumpReset;
+    }
+    else if (gap < kMinStep)
+      flags |= estimate_flags::kDuplicateStamp;  // nothing advances (a rate over 1e-315 s overflowed)
+    else if (gap > settings_.max_step)
+    {
+      if (brush_)
+        brush_->reset();
+      turn_rate_ = 0.0;
+      was_rolling_ = false;
+      flags |= estimate_flags::kGapReset;
+    }
+    else
+      dt = gap;
+  }
+  if (!(flags & estimate_flags::kDuplicateStamp))  // sub-nanosecond steps add up to one that counts
+    last_stamp_ = stamp;
+  have_last_ = true;
+  return dt;
+}
+
+void ContactEstimator::followHeading(const Eigen::Vector2d& V_r, double speed, double dt, bool first, std::uint32_t& flags)
+{
+  // the contact frame: x along V_r, held at standstill; psi_dot from its heading
+  const bool rolling = speed >= settings_.standstill_speed;
+  if (rolling)
+  {
+    const double theta = std::atan2(V_r.y(), V_r.x());
+    const double delta = wrap(theta - heading_);
+    if (!was_rolling_ || std::abs(delta) > kHeadingJump)
+    {
+      // re-initialise: turn the bristle state with the frame (a turn about z up, the paper's z down), no rate
+      // from the jump
+      if (brush_)
+        brush_->rotateFrame(paper_frame::zFromRos(delta));
+      if (!first)
+        flags |= estimate_flags::kHeadingReset;
+      turn_rate_ = 0.0;
+    }
+    else if (dt > 0.0)
+    {
+      const double tau = settings_.turn_rate_time_constant;
+      const double gain = tau > 0.0 ? -std::expm1(-dt / tau) : 1.0;
+      turn_rate_ += gain * (delta / dt - turn_rate_);
+    }
+    heading_ = theta;
+  }
+  else
+  {
+    turn_rate_ = 0.0;  // the frame does not turn at standstill
+    flags |= estimate_flags::kStandstill;
+  }
+  was_rolling_ = rolling;
+}
+
+ContactKinematics ContactEstimator::contactKinematics(const EstimatorInput& in, double psi_dot, ContactEstimateData& o) const
+{
+  // ground -> contact frame (yaw by the heading) -> paper frame
+  const double c = std::cos(heading_), s = std::sin(heading_);
+  const auto toContact = [c, s](const Eigen::Vector3d& x) {
+    return Eigen::Vector3d(c * x.x() + s * x.y(), -s * x.x() + c * x.y(), x.z());
+  };
+  using namespace paper_frame;
+  const ContactKinematics kin = ContactKinematics::fromWheel(fromRos(toContact(in.omega)),
+                                                             fromRos(Eigen::Vector2d(toContact(in.v_contact).head<2>())),
+                                                             settings_.rolling_radius, zFromRos(psi_dot));
+  const Slips sl = computeSlips(kin, settings_.standstill_speed);
+  o.sliding_velocity = toRos(kin.V_s);
+  o.slips_defined = sl.defined;
+  o.slip = toRos(sl.sigma);
+  o.spin = zToRos(sl.phi);
+  o.spin_tilt = zToRos(sl.phi_gamma);
+  o.spin_turn = zToRos(sl.phi_psi);
+  o.tilt_ratio = sl.chi_gamma.value_or(1.0);
+  o.epsilon = sl.epsilon;
+  return kin;
+}
+
+void ContactEstimator::runBrush(const ContactKinematics& kin, double dt, double omega_z, ContactEstimateData& o)
+{
+  o.brush_model = settings_.brush_model;
+  o.brush_model_used = BrushModelKind::Off;
+  o.brush_resolution = 0;
+  o.brush = BrushForces{};
+  o.friction = 0.0;
+  o.patch_radius = patch_radius_;
+  o.load = load_;
+  if (brush_)
+  {
+    o.brush = brush_->update(kin, dt);
+    o.brush_model_used = brush_->lastModel();
+    o.brush_resolution = brush_->lastResolution();
+    const Eigen::Vector2d F = paper_frame::toRos(Eigen::Vector2d(o.brush.F_x, o.brush.F_y));
+    o.brush.F_x = F.x();
+    o.brush.F_y = F.y();
+    o.brush.M_z = paper_frame::zToRos(o.brush.M_z);
+    o.friction = brush_->parameters().mu;
+  }
+  // a scalar: the same in both frames (ROS omega_z is about z up, like M_z)
+  o.brush_power = -(o.brush.F_x * o.sliding_velocity.x() + o.brush.F_y * o.sliding_velocity.y() + o.brush.M_z * omega_z);
+}
+
+void ContactEstimator::runRollingResistance(double speed, ContactEstimateData& o) const
+{
+  o.rolling_resistance_model = settings_.rolling_resistance_model;
+  o.rolling_resistance = CylinderState{};
+  o.rolling_resistance_force = o.rolling_resistance_torque = 0.0;
+  if (cylinder_)
+  {
+    o.rolling_resistance = cylinder_->solve(speed);
+    o.rolling_resistance_force = o.rolling_resistance.F_R * cylinder_->parameters().L;
+    o.rolling_resistance_torque = o.rolling_resistance.torque * cylinder_->parameters().L;
+  }
+  o.rolling_resistance_power = o.rolling_resistance_force * speed;
+}
+
+void ContactEstimator::visitBristles(const std::function<void(const Eigen::Vector2d& x, bool sliding)>& visit) const
+{
+  if (brush_)
+    brush_->visitBristles([&visit](const Eigen::Vector2d& x, bool sliding) { visit(paper_frame::toRos(x), sliding); });
+}
+
+}  // namespace sphere_contact_estimator

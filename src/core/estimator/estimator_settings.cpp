@@ -1,0 +1,85 @@
+#include "sphere_contact_estimator/core/estimator/estimator_settings.h"
+#include "sphere_contact_estimator/core/numerics/parameter_check.h"
+
+// STL
+#include <cmath>
+#include <stdexcept>
+
+namespace sphere_contact_estimator
+{
+namespace
+{
+void require(bool ok, const char* name, double value, const char* rule)
+{
+  detail::requireParameter(ok, "", name, value, rule);
+}
+}  // namespace
+
+BrushParameters EstimatorSettings::brushParameters() const
+{
+  BrushParameters p;
+  p.F_z = verticalLoad();
+  p.a = contact_modulus > 0.0 ? contactRadiusHertz(p.F_z, rolling_radius, contact_modulus) : patch_radius;
+  p.k = bristle_stiffness;
+  p.mu = friction;
+  p.pressure = pressure;
+  p.tilt = tilt;
+  p.resolution = resolution;
+  p.standstill_speed = standstill_speed;
+  p.accuracy_target = accuracy_target;
+  return p;
+}
+
+CylinderParameters EstimatorSettings::cylinderParameters() const
+{
+  CylinderParameters c;
+  c.R = rolling_radius;
+  c.k = surface_stiffness;
+  c.gamma = surface_damping;
+  c.m = surface_density;
+  c.g = gravity;
+  c.L = effective_length;
+  c.M = mass_per_length > 0.0 ? mass_per_length : verticalLoad() / (gravity * effective_length);
+  return c;
+}
+
+void EstimatorSettings::validate() const
+{
+  const auto finite = [](double x) { return std::isfinite(x); };
+  require(finite(rolling_radius) && rolling_radius > 0.0, "rolling_radius", rolling_radius, "finite and > 0 [m]");
+  require(finite(robot_mass) && robot_mass >= 0.0, "robot_mass", robot_mass, "finite and >= 0 [kg]");
+  require(finite(load) && load >= 0.0, "load", load, "finite and >= 0 [N] (0: robot_mass * gravity)");
+  require(finite(gravity) && gravity > 0.0, "gravity", gravity, "finite and > 0 [m/s^2]");
+  require(verticalLoad() > 0.0, "load", verticalLoad(), "> 0: set load or robot_mass");
+  require(finite(contact_modulus) && contact_modulus >= 0.0, "contact_modulus", contact_modulus,
+          "finite and >= 0 [Pa] (0: use patch_radius)");
+  require(finite(tilt_ratio), "tilt_ratio", tilt_ratio, "finite");
+  require(finite(turn_rate_time_constant) && turn_rate_time_constant >= 0.0, "turn_rate_time_constant",
+          turn_rate_time_constant, "finite and >= 0 [s]");
+  require(finite(max_step) && max_step > 0.0, "max_step", max_step, "finite and > 0 [s]");
+  require(finite(mass_per_length) && mass_per_length >= 0.0, "mass_per_length", mass_per_length,
+          "finite and >= 0 [kg/m] (0: load / (gravity effective_length))");
+  // the models' own checks, with the node's parameter names in front
+  try
+  {
+    if (brush_model != BrushModelKind::Off)
+      brushParameters().validate();
+  }
+  catch (const std::invalid_argument& e)
+  {
+    throw std::invalid_argument(std::string("brush (patch_radius/contact_modulus, bristle_stiffness, friction, "
+                                            "resolution, standstill_speed): ") + e.what());
+  }
+  try
+  {
+    if (rolling_resistance_model != CylinderModelKind::Off)
+      cylinderParameters().validate();
+  }
+  catch (const std::invalid_argument& e)
+  {
+    throw std::invalid_argument(std::string("rolling resistance (surface_stiffness, surface_damping, surface_density, "
+                                            "mass_per_length, effective_length): ") + e.what());
+  }
+}
+
+}  // namespace sphere_contact_estimator

@@ -1,0 +1,257 @@
+#include "sphere_contact_estimator/core/numerics/polynomial_roots.h"
+
+// STL
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+
+namespace sphere_contact_estimator::numerics
+{
+namespace
+{
+constexpr int kSize = kMaxPolynomialDegree + 1;
+constexpr int kMaxDepth = 52;  // halvings: below that the interval is at the resolution of a double
+
+// C(k, j) / C(n, j) for the monomial -> Bernstein conversion, built once per degree on the stack
+// The root of p in (a, b), where p(a) = fa and p(b) have opposite signs: Newton's method kept inside the
+// shrinking bracket (bisection where a step would leave it). Quadratic at a simple root, and it never fails.
+double bracketedNewton(const double* c, int n, double a, double b, double fa, double fb)
+{
+  double t = a - fa * (b - a) / (fb - fa);  // regula falsi start
+  if (!(t > a && t < b))
+    t = 0.5 * (a + b);
+  for (int it = 0; it < 100; ++it)
+  {
+    double f = c[n], df = 0.0;
+    for (int j = n - 1; j >= 0; --j)
+    {
+      df = df * t + f;
+      f = f * t + c[j];
+    }
+    if (f == 0.0)
+      return t;
+    if ((f > 0.0) == (fa > 0.0))
+      a = t, fa = f;
+    else
+      b = t;
+    const double tol = 4.0 * std::numeric_limits<double>::epsilon() * std::max({ std::abs(a), std::abs(b), 1e-300 });
+    if (b - a <= tol)
+      return t;
+    double next = 0.5 * (a + b);
+    if (df != 0.0)
+    {
+      const double step = f / df;
+      if (std::abs(step) <= tol)
+        return t - step;
+      if (t - step > a && t - step < b)
+        next = t - step;
+    }
+    t = next;
+  }
+  return t;
+}
+
+struct Isolation
+{
+  const double* c;  // monomial coefficients in s
+  int n;
+  double lo, d;     // s = lo + d t
+  double* roots;
+  int max_roots;
+  int found = 0;
+
+  double p(double t) const { return evaluatePolynomial(c, n, lo + d * t); }
+
+  int variations(const double* b) const
+  {
+    int v = 0, last = 0;
+    for (int k = 0; k <= n; ++k)
+    {
+      const int s = (b[k] > 0.0) - (b[k] < 0.0);
+      if (s == 0)
+        continue;
+      if (last != 0 && s != last)
+        ++v;
+      last = s;
+    }
+    return v;
+  }
+
+  void record(double t)
+  {
+    if (found < max_roots)
+      roots[found++] = lo + d * t;
+  }
+
+  // One root of q in (t0, t1), where q(t0) and q(t1) have opposite signs (or one is zero).
+  double solve(double t0, double t1) const
+  {
+    const double f0 = p(t0), f1 = p(t1);
+    if (f0 == 0.0)
+      return t0;
+    if (f1 == 0.0)
+      return t1;
+    if ((f0 > 0.0) == (f1 > 0.0))  // rounding at a near-touch: the midpoint is as good as any
+      return 0.5 * (t0 + t1);
+    return (bracketedNewton(c, n, lo + d * t0, lo + d * t1, f0, f1) - lo) / d;
+  }
+
+  void isolate(const double* b, double t0, double t1, int depth)
+  {
+    if (found >= max_roots)
+      return;
+    const int v = variations(b);
+    if (v == 0)
+      return;
+    const bool ends_differ = (b[0] > 0.0) != (b[n] > 0.0) && b[0] != 0.0 && b[n] != 0.0;
+    if (v == 1 && ends_differ)
+    {
+      record(solve(t0, t1));
+      return;
+    }
+    if (depth >= kMaxDepth)
+    {
+      if (ends_differ)
+        record(0.5 * (t0 + t1));
+      return;
+    }
+    // de Casteljau at t = 1/2: the left half's coefficients are the triangle's left edge, the right half's its
+    // right edge
+    double left[kSize], right[kSize], work[kSize];
+    std::copy(b, b + n + 1, work);
+    left[0] = work[0];
+    right[n] = work[n];
+    for (int r = 1; r <= n; ++r)
+    {
+      for (int k = 0; k <= n - r; ++k)
+        work[k] = 0.5 * (work[k] + work[k + 1]);
+      left[r] = work[0];
+      right[n - r] = work[n - r];
+    }
+    const double tm = 0.5 * (t0 + t1);
+    isolate(left, t0, tm, depth + 1);
+    isolate(right, tm, t1, depth + 1);
+  }
+};
+// Degree <= 4: the critical points split [lo, hi] into monotone pieces, each holding at most one root; the
+// critical points are the derivative's roots, found the same way down to a quadratic's closed form.
+constexpr int kLowDegree = 4;
+
+// Real roots of a t^2 + b t + c in (lo, hi), ascending, without cancellation.
+int quadraticRoots(double a, double b, double c, double lo, double hi, double* out)
+{
+  int k = 0;
+  const auto keep = [&](double t) {
+    if (t > lo && t < hi)
+      out[k++] = t;
+  };
+  if (a == 0.0)
+  {
+    if (b != 0.0)
+      keep(-c / b);
+    return k;
+  }
+  const double disc = b * b - 4.0 * a * c;
+  if (disc <= 0.0)  // no root, or a double one: no sign change
+    return 0;
+  const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+  double r1 = q / a, r2 = q != 0.0 ? c / q : r1;
+  if (r1 > r2)
+    std::swap(r1, r2);
+  keep(r1);
+  if (r2 != r1)
+    keep(r2);
+  return k;
+}
+
+// All points in (lo, hi) where p of degree n <= 4 changes sign, or (all = true) every real root found by the
+// monotone-piece scan (which for the derivative gives the critical points).
+int monotoneRoots(const double* c, int n, double lo, double hi, double* out, int max_out)
+{
+  if (n <= 2)
+    return std::min(max_out, quadraticRoots(n == 2 ? c[2] : 0.0, n >= 1 ? c[1] : 0.0, c[0], lo, hi, out));
+  double d[kLowDegree];
+  for (int i = 1; i <= n; ++i)
+    d[i - 1] = i * c[i];
+  double cuts[kLowDegree + 1];
+  const int nc = monotoneRoots(d, n - 1, lo, hi, cuts, kLowDegree);
+  int k = 0;
+  double a = lo, fa = evaluatePolynomial(c, n, lo);
+  for (int i = 0; i <= nc && k < max_out; ++i)
+  {
+    const double b = i < nc ? cuts[i] : hi, fb = evaluatePolynomial(c, n, b);
+    if (fa != 0.0 && fb != 0.0 && (fa > 0.0) != (fb > 0.0))
+    {
+      const double t = bracketedNewton(c, n, a, b, fa, fb);  // p is monotone on [a, b]
+      out[k++] = t;
+    }
+    else if (fb == 0.0 && b < hi && i < nc)  // a root exactly at a critical point: a sign change only if p crosses
+    {
+      const double next = i + 1 < nc ? cuts[i + 1] : hi;
+      const double fn = evaluatePolynomial(c, n, next);
+      if (fa != 0.0 && fn != 0.0 && (fa > 0.0) != (fn > 0.0))
+        out[k++] = b;
+    }
+    a = b;
+    fa = fb;
+  }
+  return k;
+}
+
+int lowDegreeSignChanges(const double* c, int n, double lo, double hi, double* roots, int max_roots)
+{
+  return monotoneRoots(c, n, lo, hi, roots, max_roots);
+}
+}  // namespace
+
+double evaluatePolynomial(const double* c, int n, double s)
+{
+  double v = c[n];
+  for (int i = n - 1; i >= 0; --i)
+    v = v * s + c[i];
+  return v;
+}
+
+int signChanges(const double* c, int n, double lo, double hi, double* roots, int max_roots)
+{
+  if (n < 0 || n > kMaxPolynomialDegree)
+    throw std::invalid_argument("signChanges: degree out of range");
+  if (!(hi > lo) || max_roots <= 0)
+    return 0;
+  while (n > 0 && c[n] == 0.0)
+    --n;
+  if (n == 0)
+    return 0;
+  if (n <= kLowDegree)
+    return lowDegreeSignChanges(c, n, lo, hi, roots, max_roots);
+  // q(t) = p(lo + d t): Taylor shift to lo (synthetic division), then scale by d
+  const double d = hi - lo;
+  double a[kSize];
+  std::copy(c, c + n + 1, a);
+  for (int i = 0; i < n; ++i)
+    for (int j = n - 1; j >= i; --j)
+      a[j] += lo * a[j + 1];
+  double scale = 1.0;
+  for (int j = 0; j <= n; ++j, scale *= d)
+    a[j] *= scale;
+  // Bernstein coefficients b_k = sum_{j <= k} C(k, j) / C(n, j) a_j
+  double b[kSize];
+  for (int k = 0; k <= n; ++k)
+  {
+    double sum = 0.0, ratio = 1.0;  // C(k, j) / C(n, j), from j = 0
+    for (int j = 0; j <= k; ++j)
+    {
+      sum += ratio * a[j];
+      if (j < k)
+        ratio *= static_cast<double>(k - j) / static_cast<double>(n - j);
+    }
+    b[k] = sum;
+  }
+  Isolation iso{ c, n, lo, d, roots, max_roots };
+  iso.isolate(b, 0.0, 1.0, 0);
+  return iso.found;
+}
+
+}  // namespace sphere_contact_estimator::numerics
