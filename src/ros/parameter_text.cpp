@@ -19,6 +19,14 @@ bool isInt(double x)
 {
   return std::isfinite(x) && x >= static_cast<double>(INT_MIN) && x <= static_cast<double>(INT_MAX) && std::trunc(x) == x;
 }
+
+// the parameter's value in the .cfg's minimum or maximum configuration
+dynamic_reconfigure::Config bound(const ContactEstimatorConfig::AbstractParamDescription& d, const ContactEstimatorConfig& limit)
+{
+  dynamic_reconfigure::Config c;
+  d.toMessage(c, limit);
+  return c;
+}
 }  // namespace
 
 std::vector<std::string> repairTextParameters(const ros::NodeHandle& pnh, bool& all_repaired)
@@ -76,12 +84,7 @@ std::vector<std::string> repairTextParameters(const ros::NodeHandle& pnh, bool& 
     if (d->type == "int" && value.getType() == XmlRpc::XmlRpcValue::TypeInt)
     {
       const int v = static_cast<int>(value);
-      dynamic_reconfigure::Config range;
-      d->toMessage(range, lo);
-      const int min = range.ints.at(0).value;
-      range = dynamic_reconfigure::Config();
-      d->toMessage(range, hi);
-      const int max = range.ints.at(0).value;
+      const int min = bound(*d, lo).ints.at(0).value, max = bound(*d, hi).ints.at(0).value;
       if (!values.empty() && !enumValue(values, std::to_string(v)))
         drop(std::to_string(v) + " is none of " + describeEnum(values));
       else if (v < min || v > max)
@@ -92,12 +95,7 @@ std::vector<std::string> repairTextParameters(const ros::NodeHandle& pnh, bool& 
     {
       const double v = value.getType() == XmlRpc::XmlRpcValue::TypeDouble ? static_cast<double>(value)
                                                                           : static_cast<int>(value);
-      dynamic_reconfigure::Config range;
-      d->toMessage(range, lo);
-      const double min = range.doubles.at(0).value;
-      range = dynamic_reconfigure::Config();
-      d->toMessage(range, hi);
-      const double max = range.doubles.at(0).value;
+      const double min = bound(*d, lo).doubles.at(0).value, max = bound(*d, hi).doubles.at(0).value;
       if (!(v >= min && v <= max))
       {
         std::ostringstream why;

@@ -13,6 +13,7 @@
 #include "sphere_contact_estimator/core/brush/brush_auto.h"
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
 #include "sphere_contact_estimator/core/estimator/contact_estimator.h"
+#include "sphere_contact_estimator/core/estimator/paper_frame.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_exact.h"
 
 namespace sphere_contact_estimator
@@ -344,6 +345,29 @@ TEST(ContactEstimator, ConfigureKeepsOrRejects)
   d = e.update(rolling(0.22, 1.0, 0.0, 0.01, 0.0, 0.0));
   EXPECT_EQ(d->load, 1234.0);
   EXPECT_EQ(d->patch_radius, 0.021);
+}
+
+// The one place the paper/ROS sign flips live: an involution, and the paper's V_r = (-omega_y, omega_x) R_r is
+// REP 103's (omega_y R_r, -omega_x R_r) seen in the paper frame (docs/conventions.md).
+TEST(PaperFrame, FlipsAreOneInvolutionThatMatchesTheRollingVelocity)
+{
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-5.0, 5.0);
+  for (int i = 0; i < 100; ++i)
+  {
+    const Eigen::Vector3d omega(u(rng), u(rng), u(rng));
+    const Eigen::Vector2d v(u(rng), u(rng));
+    EXPECT_EQ(paper_frame::toRos(paper_frame::fromRos(omega)), omega);
+    EXPECT_EQ(paper_frame::toRos(paper_frame::fromRos(v)), v);
+    EXPECT_EQ(paper_frame::zToRos(paper_frame::zFromRos(omega.z())), omega.z());
+    EXPECT_EQ(paper_frame::fromRos(omega).y(), -omega.y());
+    EXPECT_EQ(paper_frame::fromRos(omega).z(), -omega.z());
+    const double R = 0.1;
+    const ContactKinematics k = ContactKinematics::fromWheel(paper_frame::fromRos(omega), paper_frame::fromRos(v), R, 0.0);
+    const Eigen::Vector2d V_r_ros(omega.y() * R, -omega.x() * R);
+    EXPECT_NEAR((k.V_r - paper_frame::fromRos(V_r_ros)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((k.V_s - paper_frame::fromRos(Eigen::Vector2d(v - V_r_ros))).norm(), 0.0, 1e-14);
+  }
 }
 
 }  // namespace

@@ -28,6 +28,7 @@
 #include "sphere_contact_estimator/core/estimator/contact_estimator.h"
 #include "sphere_contact_estimator/ros/config_settings.h"
 #include "sphere_contact_estimator/ros/parameter_text.h"
+#include "wait_for.h"
 
 namespace sce = sphere_contact_estimator;
 
@@ -58,21 +59,7 @@ protected:
   }
 
   // Callbacks run on the AsyncSpinner of main(); the predicate is checked under the same lock.
-  bool waitFor(const std::function<bool()>& done, double seconds)
-  {
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
-    while (ros::ok() && ros::WallTime::now() < end)
-    {
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (done())
-          return true;
-      }
-      ros::WallDuration(0.002).sleep();
-    }
-    std::lock_guard<std::mutex> lock(mutex_);
-    return done();
-  }
+  bool waitFor(const std::function<bool()>& done, double seconds) { return sce::test::waitFor(mutex_, done, seconds); }
 
   // Rolling at v along yaw with the body frame yawed along the path; the centre slides by (along, left).
   static nav_msgs::Odometry odometry(double stamp, double v, double yaw, double along, double left, double omega_z)

@@ -19,6 +19,7 @@
 
 // Package
 #include "sphere_contact_estimator/ContactEstimate.h"
+#include "wait_for.h"
 
 namespace sce = sphere_contact_estimator;
 
@@ -45,18 +46,7 @@ TEST(NodeletZeroCopy, EstimatesArriveByPointer)
       });
   ros::Publisher odom_pub = nh.advertise<nav_msgs::Odometry>("odom", 1000);
   const auto wait = [&](double seconds, const std::function<bool()>& done) {
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
-    while (ros::ok() && ros::WallTime::now() < end)
-    {
-      {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (done())
-          return true;
-      }
-      ros::WallDuration(0.005).sleep();
-    }
-    std::lock_guard<std::mutex> lock(mutex);
-    return done();
+    return sphere_contact_estimator::test::waitFor(mutex, done, seconds, 0.005);
   };
   ASSERT_TRUE(wait(20.0, [&] { return odom_pub.getNumSubscribers() > 0 && estimate_sub.getNumPublishers() > 0; }));
 

@@ -16,6 +16,9 @@
 #include <ros/ros.h>
 #include <rosgraph_msgs/Clock.h>
 
+// Package
+#include "wait_for.h"
+
 namespace
 {
 TEST(StaleClock, StaleInputIsReportedWhileTheClockIsPaused)
@@ -37,18 +40,7 @@ TEST(StaleClock, StaleInputIsReportedWhileTheClockIsPaused)
   ros::Publisher clock_pub = nh.advertise<rosgraph_msgs::Clock>("/clock", 10, true);  // latched: the last time holds
   ros::Publisher odom_pub = nh.advertise<nav_msgs::Odometry>("odom", 100);
   const auto wait = [&](double seconds, const std::function<bool()>& done) {
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
-    while (ros::ok() && ros::WallTime::now() < end)
-    {
-      {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (done())
-          return true;
-      }
-      ros::WallDuration(0.01).sleep();
-    }
-    std::lock_guard<std::mutex> lock(mutex);
-    return done();
+    return sphere_contact_estimator::test::waitFor(mutex, done, seconds, 0.005);
   };
   ASSERT_TRUE(wait(20.0, [&] { return odom_pub.getNumSubscribers() > 0 && clock_pub.getNumSubscribers() > 0; }));
 
