@@ -70,8 +70,7 @@ void setParameter(ContactEstimatorConfig& config, const std::string& name, const
     else
     {
       const double x = toDouble(name, value);
-      // a whole number within int's range (a cast of one beyond it is undefined)
-      if (!(x >= static_cast<double>(INT_MIN) && x <= static_cast<double>(INT_MAX) && std::trunc(x) == x))
+      if (!isInt(x))
         throw std::invalid_argument("parameter " + name + ": '" + value + "' is not an integer");
       p.value = static_cast<int>(x);
     }

@@ -3,6 +3,7 @@
 // STL
 #include <cerrno>
 #include <climits>
+#include <cmath>
 #include <cstdlib>
 #include <regex>
 
@@ -35,6 +36,11 @@ std::optional<int> enumValue(const std::vector<EnumValue>& values, const std::st
     if (v.value == number)
       return v.value;
   return std::nullopt;
+}
+
+bool isInt(double x)
+{
+  return std::isfinite(x) && x >= static_cast<double>(INT_MIN) && x <= static_cast<double>(INT_MAX) && std::trunc(x) == x;
 }
 
 std::string describeEnum(const std::vector<EnumValue>& values)

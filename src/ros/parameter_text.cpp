@@ -14,12 +14,6 @@ namespace sphere_contact_estimator
 {
 namespace
 {
-// a whole number within int's range (a cast of one beyond it is undefined)
-bool isInt(double x)
-{
-  return std::isfinite(x) && x >= static_cast<double>(INT_MIN) && x <= static_cast<double>(INT_MAX) && std::trunc(x) == x;
-}
-
 // the parameter's value in the .cfg's minimum or maximum configuration
 dynamic_reconfigure::Config bound(const ContactEstimatorConfig::AbstractParamDescription& d, const ContactEstimatorConfig& limit)
 {

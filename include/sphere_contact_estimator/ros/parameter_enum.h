@@ -22,6 +22,9 @@ std::vector<EnumValue> enumValues(const std::string& edit_method);
 /// "off") or the number of one of the values ("2"). Nothing for anything else.
 std::optional<int> enumValue(const std::vector<EnumValue>& values, const std::string& text);
 
+/// A whole number within int's range, which an int parameter can take (a cast of one beyond it is undefined).
+bool isInt(double x);
+
 /// "off (0), linear (1), ...": the valid values, for error messages.
 std::string describeEnum(const std::vector<EnumValue>& values);
 
