@@ -134,7 +134,16 @@ void randomSection(int n)
     bf_worst = std::max(bf_worst, distance(ref[i * (n / subset)],
                                            sce::test::bruteForceSteady(q.p, q.sigma, q.phi, q.pg(), q.pp(), 8000, 400), q.p));
   }
+  // the reference's own estimate: it is converged only if every evaluation met 1e-9 within the work budget
+  int ref_unconverged = 0;
+  double ref_estimate = 0.0;
+  for (const sce::BrushForces& r : ref)
+  {
+    ref_unconverged += (r.flags & sce::brush_flags::kAccuracyNotMet) != 0;
+    ref_estimate = std::max(ref_estimate, r.error_estimate);
+  }
   std::printf("\n    ],\n    \"reference_vs_brute_force\": {\"points\": %d, \"max_difference\": %.3g},\n", subset, bf_worst);
+  std::printf("    \"reference\": {\"unconverged\": %d, \"max_estimate\": %.3g},\n", ref_unconverged, ref_estimate);
 
   // the linear model's bound where auto could pick it
   double lin_ratio = 0.0;

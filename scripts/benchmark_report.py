@@ -287,6 +287,10 @@ def random_section(acc):
         lines += ["The reference itself: on %d of the points it agrees with the independent brute-force marcher of"
                   " test/support (8000 paths, 400 steps; its own error is about 3e-5 μF_z where a re-adhering island"
                   " lies in the patch) within %s μF_z." % (bf["points"], fmt_err(bf["max_difference"])), ""]
+    ref = rnd.get("reference")
+    if ref:
+        lines += ["Its own estimate: at most %s μF_z; %d of the %d reference evaluations stopped at the solver's work"
+                  " budget before meeting 1e-9." % (fmt_err(ref["max_estimate"]), ref["unconverged"], rnd["points"]), ""]
     lb = rnd.get("linear_bound")
     if lb:
         lines += ["The linear model's error bound, at the %d points where it is at most 0.1 (where auto could pick the"

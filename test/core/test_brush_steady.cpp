@@ -414,5 +414,63 @@ TEST(BrushSteady, StandstillAndDegenerateInputs)
   EXPECT_THROW(BrushSteady(figure4Parameters()).evaluate({ 0.1, 0.1 }, 1.0, 0.0, 0.0, 0.0), std::invalid_argument);
 }
 
+// Slips far below the friction bound (a soft brush under a huge load, tilt and turn coupling): the bristles hardly
+// deflect, so every bound on an unresolved piece is as small as the deflections (BristleField::deflectionBound).
+// Before that bound, noise in the events at the trailing edge made the integrator bound whole intervals by the
+// friction limit: 50 000 paths, a quarter of a second, and an estimate of 150 % of mu F_z.
+TEST(BrushSteady, TinySlipsConvergeAtOnce)
+{
+  BrushParameters p;
+  p.a = 0.032;
+  p.k = 47.0;
+  p.F_z = 4.2e7;
+  p.mu = 0.001;
+  p.tilt = true;
+  const Eigen::Vector2d sigma(2.39884e-07, -4.667e-07);
+  const double phi = 8.20197, phi_gamma = 16.4039, phi_psi = -8.20197;
+  for (const PressureDistribution pressure :
+       { PressureDistribution::Parabolic, PressureDistribution::Hertzian, PressureDistribution::Uniform })
+  {
+    SCOPED_TRACE(static_cast<int>(pressure));
+    p.pressure = pressure;
+    BrushSteady::Stats stats;
+    const BrushForces f = BrushSteady(p).evaluate(sigma, phi, phi_gamma, phi_psi, 0.01, &stats);
+    EXPECT_FALSE(f.flags & brush_flags::kAccuracyNotMet);
+    EXPECT_LE(f.error_estimate, 0.01);
+    EXPECT_LT(stats.work, BrushSteady::kMaxWork / 4);
+    // the deflections are ~1e-7 of the bound: the answer is the vanishing-sliding one (eq. 51), near zero
+    const BrushForces linear = BrushLinear(p).evaluate(sigma, phi, phi_gamma, phi_psi);
+    EXPECT_LE(forceDistance(f, linear, p), f.error_estimate + 1e-9);
+  }
+}
+
+// Turn coupling far beyond the patch's scale makes every path expensive: the evaluation stops at its work budget,
+// flags the answer, and bounds what it left unsolved (never a guess, never a stall).
+TEST(BrushSteady, WorkPerEvaluationIsBounded)
+{
+  BrushParameters p;
+  p.a = 1.0531;
+  p.k = 18.3994;
+  p.F_z = 0.00305659;
+  p.mu = 5.88355;
+  p.tilt = true;
+  p.pressure = PressureDistribution::Parabolic;
+  const Eigen::Vector2d sigma(-4.35142e-05, 6.91464e-06);
+  const double phi = -1.48815, phi_gamma = -0.322097, phi_psi = -1.16606;
+  BrushSteady::Stats stats;
+  const BrushForces f = BrushSteady(p).evaluate(sigma, phi, phi_gamma, phi_psi, 5e-4, &stats);
+  // one path may overrun the budget by its segments' series (64 of degree 30) before it checks
+  EXPECT_LE(stats.work, BrushSteady::kMaxWork + 64 * 32 * 32);
+  EXPECT_GT(stats.work, BrushSteady::kMaxWork / 2);  // the point is as hard as it is meant to be
+  EXPECT_TRUE(f.flags & brush_flags::kAccuracyNotMet);
+  EXPECT_TRUE(std::isfinite(f.error_estimate));
+  EXPECT_GT(f.error_estimate, 5e-4);
+  EXPECT_LE(std::hypot(f.F_x, f.F_y), p.mu * p.F_z * (1.0 + 1e-12));
+  // the estimate still bounds the error: a looser target the budget allows agrees within both estimates
+  BrushSteady::Stats loose_stats;
+  const BrushForces loose = BrushSteady(p).evaluate(sigma, phi, phi_gamma, phi_psi, 0.2, &loose_stats);
+  EXPECT_LE(forceDistance(f, loose, p), f.error_estimate + loose.error_estimate);
+}
+
 }  // namespace
 }  // namespace sphere_contact_estimator

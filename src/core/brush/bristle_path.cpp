@@ -3,6 +3,7 @@
 // STL
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 // Boost
 #include <boost/math/constants/constants.hpp>
@@ -117,11 +118,13 @@ struct Segment
   cd Z[kSize], W[kSize];  // position z, drive w
   double B2[kSize];       // f^2: polynomial for all three pressures
   double H[kSize];        // re-adhesion margin: >= 0 (in the front half) where df/dtau >= |w|
+  long work = 0;          // what building it took
 
   // Series about `centre` (the midpoint by default; an adhesion piece expands about its own start, where its
   // event polynomial is small and its low-order coefficients exact).
   void build(const BristleField& f, const BristlePath& p, double a, double b, int degree, double centre = NAN)
   {
+    work = (degree + 2) * (degree + 2);  // the Cauchy products dominate
     t0 = a;
     t1 = b;
     tm = std::isnan(centre) ? 0.5 * (a + b) : centre;
@@ -202,8 +205,8 @@ struct Interval
 class PathSolver
 {
 public:
-  PathSolver(const BristleField& f, const BristlePath& p, double tolerance, bool keep, PathIntegrals& out)
-    : f_(f), p_(p), tolerance_(tolerance), keep_(keep), out_(out)
+  PathSolver(const BristleField& f, const BristlePath& p, double tolerance, bool keep, long work_limit, PathIntegrals& out)
+    : f_(f), p_(p), tolerance_(tolerance), keep_(keep), work_limit_(work_limit), out_(out)
   {
     // the series of up to kMaxSegments segments (about 100 kB): built once per thread, overwritten per path
     thread_local std::array<Segment, kMaxSegments> storage;
@@ -269,7 +272,10 @@ private:
     out_.truncated = degree == kMaxDegree && rate * h > 2.0;
     ns_ = count;
     for (int i = 0; i < count; ++i)
+    {
       seg_[i].build(f_, p_, i * h, i + 1 == count ? p_.length : (i + 1) * h, degree, i * h);
+      out_.work += seg_[i].work;
+    }
   }
 
   // G: where a sliding bristle re-adheres, H >= 0 in the front half (tau <= L/2, where df/dtau >= 0).
@@ -363,7 +369,7 @@ private:
     for (int i = segmentOf(tau_s); i < ns_; ++i)
       for (double lo = std::max(tau_s, seg_[i].t0); lo < seg_[i].t1;)
       {
-        if (++steps > kMaxAdhesionSteps)
+        if (++steps > kMaxAdhesionSteps || out_.work > work_limit_)
         {
           out_.truncated = true;  // a deflection turning faster than the budget follows: not resolved
           end = p_.length;
@@ -371,6 +377,7 @@ private:
         }
         const double stretch_end = std::min(seg_[i].t1, lo + stride);
         g.build(f_, p_, lo, stretch_end, seriesDegree(rate_ * (stretch_end - lo)), lo);
+        out_.work += g.work;
         adhesionSeries(f_, g, lo, u_s, U);
         dotSeries(U, U, g.n, UU);
         for (int k = 0; k <= g.n; ++k)
@@ -406,7 +413,7 @@ private:
               roots_after = k - 1;
             }
           }
-            if (f_.pressure == PressureDistribution::Uniform && tau_s == 0.0)
+          if (f_.pressure == PressureDistribution::Uniform && tau_s == 0.0)
             out_.onset_margin = peak(PP, g.n, s_lo, s_hi);
           if (crossing >= 0.0)
           {
@@ -609,6 +616,7 @@ private:
   void gauss(double a, double b, int m, const F& g)
   {
     const numerics::GaussLegendre& rule = numerics::gaussLegendre(m);
+    out_.work += 16 * m;  // a node: a sincos or a square root, a handful of products
     const double half = 0.5 * (b - a), mid = 0.5 * (b + a);
     cd sum = 0.0;
     double M_sum = 0.0;
@@ -675,6 +683,7 @@ private:
   const BristlePath& p_;
   double tolerance_;
   bool keep_;
+  long work_limit_;
   PathIntegrals& out_;  // the caller's: returned in place (it holds the pieces, most of a kilobyte)
   Segment* seg_ = nullptr;
   int ns_ = 0;
@@ -704,6 +713,11 @@ bool makeBristleField(const BrushParameters& p, const std::complex<double>& sigm
   if (std::abs(f.omega) < 1e-12)  // |R_gamma| > 1e12 a: straight
     f.omega = 0.0;
   return true;
+}
+
+double BristleField::deflectionBound() const
+{
+  return std::min(1.0, boost::math::double_constants::pi * (std::abs(sigma) + std::abs(phi)));
 }
 
 double BristleField::bound(double r2) const
@@ -877,11 +891,12 @@ double pathThrough(const BristleField& field, std::complex<double> z)
   return z.imag() - z.real() * t / (1.0 + std::sqrt(1.0 + t * t));
 }
 
-PathIntegrals solvePath(const BristleField& field, const BristlePath& path, double tolerance, bool keep_pieces)
+PathIntegrals solvePath(const BristleField& field, const BristlePath& path, double tolerance, bool keep_pieces,
+                        long work_limit)
 {
   PathIntegrals out;  // returned in place
   if (path.length > 0.0)
-    PathSolver(field, path, tolerance, keep_pieces, out).run();
+    PathSolver(field, path, tolerance, keep_pieces, work_limit, out).run();
   return out;
 }
 

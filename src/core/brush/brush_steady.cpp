@@ -65,9 +65,12 @@ BrushForces BrushSteady::solve(const Eigen::Vector2d& sigma, double phi, double 
     return out;  // mu F_z = 0: no force, exactly
   const double c = peakFactor(p_.pressure);
   const double scale = c / pi;  // dimensionless integrals -> fractions of mu F_z
-  const PatchIntegral I = integratePatch(f, tolerance / scale, kMaxPaths);
+  const PatchIntegral I = integratePatch(f, tolerance / scale, kMaxWork);
   if (stats)
+  {
     stats->paths = I.paths;
+    stats->work = I.work;
+  }
   const double muFz = p_.mu * p_.F_z;
   out.F_x = muFz * scale * I.force.real();
   out.F_y = muFz * scale * I.force.imag();

@@ -22,8 +22,6 @@ using boost::math::double_constants::pi;
 constexpr int kMaxIntervals = 512;
 constexpr int kMaxGaps = 64;
 constexpr int kMaxMixedDepth = 4;
-// |weight * path integral| for any path and component: path travel <= pi, |u| <= 1, |z| <= 1, weight <= 2
-constexpr double kIntegrandBound = 2.0 * pi;
 
 // A sign change of a continuous g between a (g >= 0) and b (g < 0), by the Illinois variant of regula falsi.
 template <class G>
@@ -63,11 +61,17 @@ struct Interval
 class Integrator
 {
 public:
-  Integrator(const BristleField& field, double tolerance, int max_paths)
-    : f_(field), tol_(tolerance), max_paths_(max_paths), path_tol_(std::max(1e-14, 1e-2 * tolerance))
+  Integrator(const BristleField& field, double tolerance, long max_work)
+    : f_(field)
+    , tol_(tolerance)
+    , max_work_(max_work)
+    , path_tol_(std::max(1e-14, 1e-2 * tolerance))
+    // |weight * path integral| for any path and component: travel <= pi, |u| <= the field's bound, |z| <= 1,
+    // weight <= 2
+    , bound_(2.0 * pi * field.deflectionBound())
   {
     // where two structures meet, bisection stops at a width whose bound is a small part of the tolerance
-    delta_ = std::max(1e-13, 1e-3 * tolerance / (2.0 * kIntegrandBound));
+    delta_ = std::max(1e-13, 1e-3 * tolerance / (2.0 * std::max(bound_, 1e-300)));
   }
 
   PatchIntegral run()
@@ -82,7 +86,7 @@ public:
         add(from, to, 0);
       from = to;
     }
-    while (estimate() > tol_ && paths_ < max_paths_ && n_ + 2 * kMaxGaps < kMaxIntervals)
+    while (estimate() > tol_ && !spent() && n_ + 2 * kMaxGaps < kMaxIntervals)
     {
       int worst = -1;
       double p = 0.0;
@@ -108,6 +112,7 @@ public:
     out.utilisation2 = util2_;
     out.error = estimate();
     out.paths = paths_;
+    out.work = work_;
     out.converged = out.error <= tol_;
     return out;
   }
@@ -122,21 +127,39 @@ private:
     double margin;
   };
 
+  // Two paths with no change of event structure between them, as far as their samples tell.
+  static bool sameStructure(const Sample& x, const Sample& y) { return x.signature == y.signature; }
+
+  // The work budget is spent: no further path is solved, no interval refined.
+  bool spent() const { return work_ >= max_work_; }
+
   Sample solve(double theta)
   {
-    ++paths_;
-    const BristlePath path = BristlePath::across(f_, theta);
-    const PathIntegrals r = solvePath(f_, path, path_tol_);
-    util2_ = std::max(util2_, r.utilisation2);
     Sample s;
     s.theta = theta;
+    if (spent())
+    {
+      // not solved: nothing counted, bounded by the integrand's bound, its own structure (so that no rule treats
+      // it as smooth)
+      s.v[0] = s.v[1] = s.v[2] = s.v[3] = 0.0;
+      s.error = bound_;
+      s.signature = kUnsolved;
+      s.margin = 1.0;
+      return s;
+    }
+    ++paths_;
+    const BristlePath path = BristlePath::across(f_, theta);
+    const PathIntegrals r = solvePath(f_, path, path_tol_, false, max_work_ - work_);
+    work_ += r.work;
+    util2_ = std::max(util2_, r.utilisation2);
     const double J = path.weight;
     s.v[0] = J * r.force.real();
     s.v[1] = J * r.force.imag();
     s.v[2] = J * r.moment;
     s.v[3] = J * r.sliding;
     // a path whose series budget ran out is not resolved: bound it by the integrand's bound
-    s.error = J * (r.truncated ? kIntegrandBound : r.error);
+    // the computed and the exact integral each lie within bound_ (every node value obeys |u| <= the field's bound)
+    s.error = r.truncated ? bound_ : std::min(J * r.error, 2.0 * bound_);
     s.signature = r.signature;
     s.margin = r.onset_margin;
     return s;
@@ -168,16 +191,19 @@ private:
     for (int i = 0; i < 15; ++i)
       s[i] = solve(mid + half * rule.x[i]);
     bool uniform = true;
-    for (int i = 0; i + 1 < 15; ++i)
-      uniform = uniform && s[i].signature == s[i + 1].signature;
+    for (int i = 0; i < 15; ++i)
+      uniform = uniform && s[i].signature == s[0].signature;
     double probe = 0.0;
     if (uniform && hiddenChange(s, probe))
     {
       // a band of other structure between two nodes: confirm it with a path there
       s[count++] = solve(mid + half * probe);
-      uniform = s[15].signature == s[0].signature;
+      uniform = sameStructure(s[15], s[0]);
     }
-    if (!uniform && depth < kMaxMixedDepth)
+    // where the integrand's bound is far below the tolerance (tiny slips), a change of structure costs nothing to
+    // leave inside: the rigorous bound below covers it
+    const bool negligible = 2.0 * pi * bound_ <= 0.1 * tol_;
+    if (!uniform && depth < kMaxMixedDepth && !spent() && !negligible)
     {
       // the changes between neighbouring samples, each to a gap narrower than delta_
       std::array<Sample, 16> sorted = s;
@@ -185,7 +211,7 @@ private:
       std::array<std::pair<Sample, Sample>, kMaxGaps> gaps;
       int ng = 0;
       for (int i = 0; i + 1 < count; ++i)
-        if (sorted[i].signature != sorted[i + 1].signature)
+        if (!sameStructure(sorted[i], sorted[i + 1]))
           locate(sorted[i], sorted[i + 1], gaps.data(), ng);
       double from = a;
       for (int k = 0; k < ng; ++k)
@@ -200,7 +226,7 @@ private:
         for (int c = 0; c < 4; ++c)
           g.K[c] = 0.5 * w * (gaps[k].first.v[c] + gaps[k].second.v[c]);
         for (int c = 0; c < 3; ++c)
-          g.E[c] = 2.0 * w * kIntegrandBound;
+          g.E[c] = 2.0 * w * bound_;
         push(g);
         from = g.b;
       }
@@ -224,7 +250,7 @@ private:
     {
       v.E[c] = std::abs(v.K[c] - G[c]) + path_error;
       if (!uniform)  // a change of structure left inside: the rigorous bound of any rule on a bounded integrand
-        v.E[c] = std::max(v.E[c], 2.0 * (b - a) * kIntegrandBound);
+        v.E[c] = std::max(v.E[c], 2.0 * (b - a) * bound_);
     }
     push(v);
   }
@@ -275,15 +301,15 @@ private:
   {
     if (ng >= kMaxGaps)
       return;
-    if (hi.theta - lo.theta <= delta_)
+    if (hi.theta - lo.theta <= delta_ || spent())
     {
       gaps[ng++] = { lo, hi };
       return;
     }
     const Sample m = solve(0.5 * (lo.theta + hi.theta));
-    if (m.signature == lo.signature)
+    if (sameStructure(m, lo))
       locate(m, hi, gaps, ng);
-    else if (m.signature == hi.signature)
+    else if (sameStructure(m, hi))
       locate(lo, m, gaps, ng);
     else
     {
@@ -292,10 +318,13 @@ private:
     }
   }
 
+  static constexpr std::uint64_t kUnsolved = ~std::uint64_t(0);
+
   const BristleField& f_;
   double tol_;
-  int max_paths_;
-  double path_tol_, delta_;
+  long max_work_;
+  long work_ = 0;
+  double path_tol_, bound_, delta_;
   std::array<Interval, kMaxIntervals> iv_;
   int n_ = 0;
   int paths_ = 0;
@@ -421,9 +450,9 @@ int reAdhesionBands(const BristleField& field, double* lo, double* hi, int max_c
   return n;
 }
 
-PatchIntegral integratePatch(const BristleField& field, double tolerance, int max_paths)
+PatchIntegral integratePatch(const BristleField& field, double tolerance, long max_work)
 {
-  Integrator integrator(field, tolerance, max_paths);
+  Integrator integrator(field, tolerance, max_work);
   return integrator.run();
 }
 

@@ -93,8 +93,10 @@ struct Isolation
       return t0;
     if (f1 == 0.0)
       return t1;
-    if ((f0 > 0.0) == (f1 > 0.0))  // rounding at a near-touch: the midpoint is as good as any
-      return 0.5 * (t0 + t1);
+    // The Bernstein coefficients saw a sign change that direct evaluation does not: one end is within rounding of
+    // zero (a near-touch there). That end is the root; the interval's midpoint, which may lie far from both, is not.
+    if ((f0 > 0.0) == (f1 > 0.0))
+      return std::abs(f0) <= std::abs(f1) ? t0 : t1;
     return (bracketedNewton(c, n, lo + d * t0, lo + d * t1, f0, f1) - lo) / d;
   }
 

@@ -36,6 +36,10 @@ struct BristleField
   std::complex<double> pole() const { return std::complex<double>(-sigma.imag(), sigma.real()) / phi; }
   /// Tilting centre's y (eq. 36 with epsilon = (0, 1)), -1 / omega; only with omega != 0.
   double tiltingCentre() const { return -1.0 / omega; }
+  /// The largest |u| any bristle reaches: adhering, |du/dtau| <= |w| (the turn coupling only rotates u); sliding
+  /// outside G, |u| = f grows slower than |w| (G is where it would grow faster); so |u| <= min(1, travel max|w|),
+  /// with travel <= pi and |w| <= |sigma| + |phi| on the patch. Tiny slips give a tiny bound.
+  double deflectionBound() const;
 };
 
 /// The dimensionless problem of a brush at these slips (frame with epsilon = (0, 1); phi_gamma and phi_psi used
@@ -46,6 +50,9 @@ bool makeBristleField(const BrushParameters& p, const std::complex<double>& sigm
 
 /// The bound at the patch centre, mu q_z(0) / k [m]: the unit of the field's deflections.
 double deflectionUnit(const BrushParameters& p);
+
+/// No limit on a path's work (solvePath).
+constexpr long kUnlimitedWork = 1L << 62;
 
 /// One characteristic, identified by where it crosses the y axis: y0 = sin(theta). Straight paths are the
 /// lines y = y0 (eq. 18a); with tilt the circles about the tilting centre through (0, y0) (eq. 44a).
@@ -89,6 +96,9 @@ struct PathIntegrals
   /// across paths, so a sign change between two paths of equal signature shows a band of other structure.
   double onset_margin = 1.0;
   bool truncated = false;        ///< rates too large for the series budget: the path's tail is not resolved
+  /// Work done: series coefficients and rule nodes computed (a measure of cost that does not depend on the
+  /// machine, for budgets).
+  long work = 0;
 
   static constexpr int kMaxPieces = 16;
   int pieces = 0;
@@ -100,8 +110,10 @@ struct PathIntegrals
 /// df/dtau >= |w|, the region G of re-adhesion, fixed in the plane), each located as a root of a polynomial
 /// (Taylor series of the exact path, to machine precision; polynomials of degree 2-4 on straight paths
 /// without the turn coupling) and isolated exactly. Adhering pieces are integrated exactly; sliding pieces by
-/// Gauss-Legendre rules graded towards the spin pole, with `tolerance` bounding their error.
-PathIntegrals solvePath(const BristleField& field, const BristlePath& path, double tolerance, bool keep_pieces = false);
+/// Gauss-Legendre rules graded towards the spin pole, with `tolerance` bounding their error. A path whose work
+/// would pass `work_limit` stops there, flagged truncated.
+PathIntegrals solvePath(const BristleField& field, const BristlePath& path, double tolerance, bool keep_pieces = false,
+                        long work_limit = kUnlimitedWork);
 
 /// Re-adhesion margin at z in the front half of the patch: (df/dtau)^2 - |w|^2, scaled by a positive factor
 /// (4 (1 - r^2) for the Hertzian pressure); >= 0 exactly where a sliding bristle re-adheres (the region G, fixed

@@ -44,6 +44,7 @@ public:
   struct Stats
   {
     int paths = 0;  ///< characteristics solved
+    long work = 0;  ///< their work (PathIntegrals::work)
   };
   /// The same to `tolerance` (a fraction of mu F_z), in (0, 1].
   BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi, double tolerance,
@@ -59,8 +60,8 @@ public:
   /// in units of a. False (and no field) when there is nothing to integrate: no friction or no load.
   bool field(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi, BristleField& out) const;
 
-  /// Largest number of paths one evaluation may solve (about 2 ms); beyond, kAccuracyNotMet.
-  static constexpr int kMaxPaths = 20000;
+  /// Largest work (PathIntegrals::work) one evaluation may do; beyond, kAccuracyNotMet.
+  static constexpr long kMaxWork = 4000000;
   /// Paths and points per path shown to a visitor.
   static constexpr int kVisitPaths = 24;
   static constexpr int kVisitPoints = 24;

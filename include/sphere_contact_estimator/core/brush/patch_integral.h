@@ -20,6 +20,7 @@ struct PatchIntegral
   /// Bound on the error of each of force.real(), force.imag() and moment (the largest of the three).
   double error = 0.0;
   int paths = 0;               ///< paths solved
+  long work = 0;               ///< their work (PathIntegrals::work)
   bool converged = false;      ///< error <= the tolerance asked for
 };
 
@@ -30,8 +31,10 @@ struct PatchIntegral
 /// tangent to the re-adhesion region G or to the stick-slip curve, G reaching the leading edge), located by
 /// bisection on the structure, so that no rule straddles a change of structure; then the sub-interval with
 /// the largest error estimate (|Kronrod - Gauss|) is halved until the sum meets the tolerance. The along-path
-/// quadrature's own bound (solvePath) is added. Stops, unconverged, after `max_paths` paths.
-PatchIntegral integratePatch(const BristleField& field, double tolerance, int max_paths = 20000);
+/// quadrature's own bound (solvePath) is added. Every bound on an unresolved piece uses the field's own bound on
+/// |u| (BristleField::deflectionBound), so tiny slips converge at once. Stops, unconverged, when the paths' work
+/// reaches `max_work`: the paths left unsolved and the intervals left unrefined are bounded, never guessed.
+PatchIntegral integratePatch(const BristleField& field, double tolerance, long max_work);
 
 /// Theta of the path through the spin pole, if the pole lies inside the patch.
 bool polePath(const BristleField& field, double& theta);
