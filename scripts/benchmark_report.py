@@ -180,7 +180,7 @@ def steady_section(acc, g):
              " φ = 3.33 1/m, χ_γ = 0.9, σ_x from −1 to 1 in steps of 0.1 and σ_y in {0, 0.05, 0.1, 0.2}: %d points per"
              " tilt value, without and with tilt. Each point is one benchmark of one evaluation; the table gives the"
              " median, 90th percentile and max over the points, and the largest error over the set against the"
-             " solver at a target of 1e-9 (model_accuracy), with the number of points where the solver's error"
+             " solver at a target of 1e-8 (model_accuracy), with the number of points where the solver's error"
              " estimate is below its error." % per_tilt]
     if counts and counts != [per_tilt]:
         lines[-1] += " (This run timed %s points per target and tilt.)" % "/".join(str(c) for c in counts)
@@ -268,7 +268,7 @@ def random_section(acc):
              "%d seeded random operating points over the envelope a user reaches: a = 0.01–0.08 m, F_z = 20–5000 N,"
              " μ = 0.2–1.2, k = 10^6.5–10^9 N/m³, |σ_x| ≤ 0.3, |σ_y| ≤ 0.1, |aφ| ≤ 1, χ_γ from −0.5 to 1.5, the three"
              " pressure distributions, without and with tilt, slips and spin scaled together by 10^−3 to 1 (weighted"
-             " towards the envelope's edge). The steady solver at each target is compared with itself at 1e-9; the"
+             " towards the envelope's edge). The steady solver at each target is compared with itself at 1e-8; the"
              " times are single calls timed inside model_accuracy (steady_clock, not Google Benchmark)." % n, "",
              "| target | max error | points over target | estimate < error | estimate < error/2 | max error/estimate |"
              " median time | p99 time |", "|---|---|---|---|---|---|---|---|"]
@@ -290,7 +290,7 @@ def random_section(acc):
     ref = rnd.get("reference")
     if ref:
         lines += ["Its own estimate: at most %s μF_z; %d of the %d reference evaluations stopped at the solver's work"
-                  " budget before meeting 1e-9." % (fmt_err(ref["max_estimate"]), ref["unconverged"], rnd["points"]), ""]
+                  " budget before meeting 1e-8." % (fmt_err(ref["max_estimate"]), ref["unconverged"], rnd["points"]), ""]
     lb = rnd.get("linear_bound")
     if lb:
         lines += ["The linear model's error bound, at the %d points where it is at most 0.1 (where auto could pick the"
@@ -570,7 +570,7 @@ def main():
               % (ctx.get("host_name", "?"), ctx.get("num_cpus", "?"), ctx.get("mhz_per_cpu", 0), "Release", date),
               "%s of Google Benchmark (real time); the machines are shared, so compare ratios within one run, not"
               " across runs. Brush errors are max(|ΔF_x|, |ΔF_y|, |ΔM_z|/a) / μF_z against a converged reference, the"
-              " steady solver at a target of 1e-9 (1e-10 for the transient runs), itself checked against an independent"
+              " steady solver at a target of 1e-8 (1e-10 for the transient runs), itself checked against an independent"
               " brute-force marcher below; cylinder errors are against the exact solution of eq. 18." % (
                   "medians of %d repetitions" % reps if reps > 1 else "from one repetition"), ""]
     lines += steady_section(acc, g)

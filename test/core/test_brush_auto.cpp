@@ -94,7 +94,8 @@ TEST(BrushAuto, WithinItsTargetAtRandomPoints)
       BrushForces f;
       for (int step = 0; step < 5; ++step)
         f = model.update(k, 0.01);
-      const BrushForces ref = BrushSteady(q.p).evaluate(q.sigma, q.phi, q.chi * q.phi, (1 - q.chi) * q.phi, 1e-9);
+      const BrushForces ref = BrushSteady(q.p).evaluate(q.sigma, q.phi, q.chi * q.phi, (1 - q.chi) * q.phi, 1e-8,
+                                                        nullptr, BrushSteady::kReferenceWork);
       const double error = forceDistance(f, ref, q.p);
       worst = std::max(worst, error / target);
       EXPECT_LE(error, target) << "target " << target << " point " << i << " ran " << toString(model.lastModel());

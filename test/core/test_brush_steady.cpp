@@ -5,6 +5,7 @@
 
 // STL
 #include <cmath>
+#include <iomanip>
 #include <random>
 #include <vector>
 
@@ -242,7 +243,7 @@ TEST(BrushSteady, AgreesWithTheBruteForceMarcherAtRandomPoints)
 TEST(BrushSteady, ErrorEstimateBoundsTheErrorOnRandomPoints)
 {
   // At targets 1e-2, 1e-3 and 1e-4, on seeded random points over the envelope: the true error (against a run at
-  // 1e-9) never exceeds the target, the estimate is below the error at no more than 1 % of the points and never
+  // 1e-8) never exceeds the target, the estimate is below the error at no more than 1 % of the points and never
   // below half of it. (bench/brush_accuracy does the same on 1000 points per target.)
   std::mt19937_64 rng(23);
   const int n = 240;
@@ -255,12 +256,17 @@ TEST(BrushSteady, ErrorEstimateBoundsTheErrorOnRandomPoints)
     {
       const RandomPoint q = drawPoint(draw, i);
       const BrushSteady model(q.p);
-      const BrushForces ref = model.evaluate(q.sigma, q.phi, q.phi_gamma, q.phi_psi, 1e-9);
+      const BrushForces ref =
+          model.evaluate(q.sigma, q.phi, q.phi_gamma, q.phi_psi, 1e-8, nullptr, BrushSteady::kReferenceWork);
       const BrushForces f = model.evaluate(q.sigma, q.phi, q.phi_gamma, q.phi_psi, target);
       const double error = forceDistance(f, ref, q.p);
       worst = std::max(worst, error);
       below += error > f.error_estimate;
-      EXPECT_LE(error, 2.0 * f.error_estimate) << "point " << i << " target " << target;
+      EXPECT_LE(error, 2.0 * f.error_estimate)
+          << std::setprecision(17) << "point " << i << " target " << target << ": " << toString(q.p.pressure) << " tilt " << q.p.tilt << " a "
+          << q.p.a << " F_z " << q.p.F_z << " mu " << q.p.mu << " k " << q.p.k << " sigma " << q.sigma.transpose()
+          << " phi " << q.phi << " phi_gamma " << q.phi_gamma << " phi_psi " << q.phi_psi << " reference flags "
+          << ref.flags << " estimate " << ref.error_estimate;
       EXPECT_LE(error, target) << "point " << i;
     }
     std::printf("target %.0e: largest error %.2e, estimate below the error at %d of %d points\n", target, worst, below, n);
@@ -412,6 +418,59 @@ TEST(BrushSteady, StandstillAndDegenerateInputs)
   p.F_z = 0.0;
   EXPECT_EQ(BrushSteady(p).evaluate({ 0.1, 0.1 }, 1.0, 0.0, 0.0).F_x, 0.0);
   EXPECT_THROW(BrushSteady(figure4Parameters()).evaluate({ 0.1, 0.1 }, 1.0, 0.0, 0.0, 0.0), std::invalid_argument);
+}
+
+// Points where random sweeps (7500 points per seed, targets 1e-2 to 1e-4) found the estimate below the error: the
+// onset of sliding jumping across the paths where a maximum of |u|^2 - f^2 touches the bound (PathIntegrals::fold;
+// uniform and Hertzian pressure, tilt), a steep continuous turn of the onset (the null rule; no tilt), and a band of
+// other structure right beside a structure breakpoint (the probes at an interval's ends; 150x before). Each against
+// the solver at 1e-9.
+TEST(BrushSteady, ErrorEstimateCoversFoldsAndBandsBesideBreakpoints)
+{
+  struct Case
+  {
+    PressureDistribution pressure;
+    bool tilt;
+    double a, F_z, mu, k, sigma_x, sigma_y, phi, chi;
+  };
+  const Case cases[] = {
+    { PressureDistribution::Uniform, true, 0.041195822770011957, 78.881338394131404, 0.88339389599191209,
+      67860081.343505427, 0.00083865446777103315, -0.00047256313647102047, -0.16162285296621121, 0.27535169812629834 },
+    { PressureDistribution::Hertzian, true, 0.02165459300364473, 29.565575426983319, 1.1701762224880943,
+      8048041.1781219542, -0.18562479261995132, -0.059710484094701602, 20.697065985165327, 1.0449454352112819 },
+    { PressureDistribution::Uniform, true, 0.031159203260132544, 3952.744393535273, 0.92309549579259631,
+      264070392.63027248, -0.10291070878515597, -0.047354096246125695, 10.377019013589718, 0.37229732534643989 },
+    { PressureDistribution::Uniform, false, 0.02884763614923419, 49.171106389720769, 1.1701468184703576,
+      6437972.5074475538, 0.038982616758223551, -0.0080353776126170194, -5.7983191524133346, -0.40656507390047386 },
+    { PressureDistribution::Uniform, true, 0.060424257471755442, 33.928578589923596, 0.98463546678709779,
+      3187823.4793477054, 0.0054561413826930217, 0.0032324227835455578, 0.2687277993982074, 1.1288546167942457 },
+    { PressureDistribution::Uniform, true, 0.031236666495564683, 25.645270327626548, 1.0009610549730572,
+      31028624.379947636, -0.017086231042057799, 0.0017548717888144147, 0.82685136467179821, 0.72075661895475895 },
+    { PressureDistribution::Uniform, false, 0.047640289549478985, 2689.4965664987849, 0.41837896705410282,
+      16703389.274273353, -0.246526055458062, -0.096396833114856542, -8.0456130401204433, 0.67182074041258266 },
+  };
+  for (const Case& c : cases)
+  {
+    BrushParameters p;
+    p.pressure = c.pressure;
+    p.tilt = c.tilt;
+    p.a = c.a;
+    p.F_z = c.F_z;
+    p.mu = c.mu;
+    p.k = c.k;
+    const BrushSteady model(p);
+    const Eigen::Vector2d sigma(c.sigma_x, c.sigma_y);
+    const double pg = c.chi * c.phi, pp = c.phi - pg;
+    const BrushForces ref = model.evaluate(sigma, c.phi, pg, pp, 1e-9, nullptr, BrushSteady::kReferenceWork);
+    ASSERT_FALSE(ref.flags & brush_flags::kAccuracyNotMet);
+    for (double target : { 1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 1e-5 })
+    {
+      SCOPED_TRACE(::testing::Message() << "a " << c.a << " target " << target);
+      const BrushForces f = model.evaluate(sigma, c.phi, pg, pp, target);
+      EXPECT_LE(forceDistance(f, ref, p), f.error_estimate + ref.error_estimate);
+      EXPECT_LE(f.error_estimate, target);
+    }
+  }
 }
 
 // Slips far below the friction bound (a soft brush under a huge load, tilt and turn coupling): the bristles hardly

@@ -220,5 +220,26 @@ TEST(QuadratureRules, KronrodAndItsGaussRule)
   EXPECT_EQ(gauss_nodes, 7);
 }
 
+TEST(QuadratureRules, KronrodComplementIsInterpolatoryOnTheOtherEightNodes)
+{
+  // exact to degree 7 (the interpolatory rule on 8 nodes), not at degree 8, and zero at the Gauss nodes
+  const GaussKronrod15& r = gaussKronrod15();
+  const std::array<double, 15>& w = kronrodComplement();
+  for (int i = 0; i < 15; ++i)
+    if (r.wg[i] != 0.0)
+      EXPECT_EQ(w[i], 0.0);
+  for (int degree = 0; degree <= 8; ++degree)
+  {
+    double q = 0.0;
+    for (int i = 0; i < 15; ++i)
+      q += w[i] * std::pow(r.x[i], degree);
+    const double exact = degree % 2 ? 0.0 : 2.0 / (degree + 1);
+    if (degree <= 7)
+      EXPECT_NEAR(q, exact, 1e-13) << degree;
+    else
+      EXPECT_GT(std::abs(q - exact), 1e-6);
+  }
+}
+
 }  // namespace
 }  // namespace sphere_contact_estimator::numerics

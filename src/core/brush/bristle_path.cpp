@@ -25,7 +25,8 @@ constexpr double kSeriesTolerance = 1e-17;
 constexpr int kMaxGIntervals = 8;
 constexpr int kMaxAdhesionSteps = 4096;  // stretches of a radian of turn one adhesion piece may take
 constexpr double kGaussRadius = 6.0;  // graded rules split where the pole's ellipse is closer than this
-constexpr double kClosedFormRadius = 60.0;  // straight sliding pieces in closed form while the pole's is closer
+constexpr double kClosedFormRadius = 60.0;
+constexpr double kFoldFloor = 1e-12;  // |u|^2 - f^2 (of order 1) within this of 0 is rounding's  // straight sliding pieces in closed form while the pole's is closer
 
 cd timesI(double a, cd z) { return { -a * z.imag(), a * z.real() }; }  // i a z
 // phi_2(i x) = (e^{ix} - 1 - ix) / (ix)^2 = ((1 - cos x) + i (x - sin x)) / x^2, without cancellation
@@ -364,6 +365,8 @@ private:
     cd U[kSize];
     double PP[kSize], UU[kSize];
     int subrange = 0, steps = 0;
+    const bool first_piece = !adhered_;
+    adhered_ = true;
     Segment g;  // a stretch of the path from the piece's start on, expanded about its own start
     const double stride = rate_ > 0.0 ? 1.0 / rate_ : INFINITY;  // at most a radian of turn per stretch
     for (int i = segmentOf(tau_s); i < ns_; ++i)
@@ -415,12 +418,16 @@ private:
           }
           if (f_.pressure == PressureDistribution::Uniform && tau_s == 0.0)
             out_.onset_margin = peak(PP, g.n, s_lo, s_hi);
+          if (first_piece)
+            localMaxima(PP, g.n, s_lo, s_hi, crossing >= 0.0 ? crossing - g.tm : s_hi);
           if (crossing >= 0.0)
           {
             accumulateAdhesion(U, g, s_lo, crossing - g.tm);
             end = crossing;
             signature(16u + static_cast<unsigned>(std::min(subrange, 15)) * 8u +
                       static_cast<unsigned>(std::min(roots_after, 7)));
+            if (first_piece)
+              signature(200u + static_cast<unsigned>(std::min(maxima_before_onset_, 3)));
             if (keep_ && out_.pieces > 0)
               out_.piece[out_.pieces - 1].end = end;
             return evaluate(U, g.n, crossing - g.tm);
@@ -435,6 +442,8 @@ private:
     // no root after it. With the uniform pressure the onset really leaves through the edge: a kink across paths.
     end = p_.length;
     signature(f_.pressure == PressureDistribution::Uniform ? 15u : 16u + static_cast<unsigned>(std::min(subrange, 15)) * 8u);
+    if (first_piece)
+      signature(200u + static_cast<unsigned>(std::min(maxima_before_onset_, 3)));
     return u_s;
   }
 
@@ -467,6 +476,36 @@ private:
     for (int k = 0; k < nc; ++k)
       best = std::max(best, numerics::evaluatePolynomial(c, n, cuts[k]));
     return best;
+  }
+
+  // The interior local maxima of |u|^2 - f^2 on (lo, hi) (its derivative changes sign from + to -): the value at the
+  // first one becomes the fold (PathIntegrals::fold), and those before `onset` are counted. The count changes where
+  // the onset jumps past a maximum (the fold reaches 0), which the signature then shows on a band of paths as wide as
+  // the maximum's existence before the onset, not only on the narrow dip after it. Stationary points at the ends
+  // (where the bound and the deflection both vanish) are rounding's, not folds.
+  void localMaxima(const double* c, int n, double lo, double hi, double onset)
+  {
+    double d[kSize], cuts[2 * kMaxDegree];
+    for (int k = 1; k <= n; ++k)
+      d[k - 1] = k * c[k];
+    const int nc = numerics::signChanges(d, n - 1, lo, hi, cuts, 2 * kMaxDegree);
+    const double margin = 1e-9 * (hi - lo);
+    for (int k = 0; k < nc; ++k)
+    {
+      if (cuts[k] - lo < margin || hi - cuts[k] < margin)
+        continue;
+      // the derivative just before the change: positive at a maximum
+      const double before = k > 0 ? 0.5 * (cuts[k - 1] + cuts[k]) : 0.5 * (lo + cuts[k]);
+      if (!(numerics::evaluatePolynomial(d, n - 1, before) > 0.0))
+        continue;
+      // a maximum within rounding of the bound (where both vanish, at the edges) tells nothing: its sign is noise
+      const double value = numerics::evaluatePolynomial(c, n, cuts[k]);
+      if (!(std::abs(value) > kFoldFloor))
+        continue;
+      if (std::isnan(out_.fold))
+        out_.fold = value;
+      maxima_before_onset_ += cuts[k] < onset;
+    }
   }
 
   void sampleUtilisation(const cd* U, const Segment& g, double s_lo, double s_hi)
@@ -688,6 +727,8 @@ private:
   Segment* seg_ = nullptr;
   int ns_ = 0;
   double rate_ = 0.0;  // the fastest turn along the path, max(|omega|, |kappa|)
+  bool adhered_ = false;         // an adhesion piece was solved (folds are sought on the first)
+  int maxima_before_onset_ = 0;  // on the first adhesion piece
   Interval g_[kMaxGIntervals];
   int ng_ = 0;
 };

@@ -29,7 +29,7 @@ BrushForces BrushSteady::evaluate(const Eigen::Vector2d& sigma, double phi, doub
 }
 
 BrushForces BrushSteady::evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi,
-                                  double tolerance, Stats* stats) const
+                                  double tolerance, Stats* stats, long max_work) const
 {
   if (!(std::isfinite(tolerance) && tolerance > 0.0 && tolerance <= 1.0))
   {
@@ -37,7 +37,9 @@ BrushForces BrushSteady::evaluate(const Eigen::Vector2d& sigma, double phi, doub
     msg << "steady brush model: tolerance " << tolerance << " must be in (0, 1] (a fraction of mu F_z)";
     throw std::invalid_argument(msg.str());
   }
-  return solve(sigma, phi, phi_gamma, phi_psi, tolerance, nullptr, stats);
+  if (!(max_work > 0))
+    throw std::invalid_argument("steady brush model: the work budget must be positive");
+  return solve(sigma, phi, phi_gamma, phi_psi, tolerance, nullptr, stats, max_work);
 }
 
 BrushForces BrushSteady::evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi,
@@ -52,7 +54,7 @@ bool BrushSteady::field(const Eigen::Vector2d& sigma, double phi, double phi_gam
 }
 
 BrushForces BrushSteady::solve(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi,
-                               double tolerance, const Visitor* visit, Stats* stats) const
+                               double tolerance, const Visitor* visit, Stats* stats, long max_work) const
 {
   BrushForces out;
   if (p_.tilt && std::abs(phi_gamma) * p_.a > 1.0)
@@ -65,7 +67,19 @@ BrushForces BrushSteady::solve(const Eigen::Vector2d& sigma, double phi, double 
     return out;  // mu F_z = 0: no force, exactly
   const double c = peakFactor(p_.pressure);
   const double scale = c / pi;  // dimensionless integrals -> fractions of mu F_z
-  const PatchIntegral I = integratePatch(f, tolerance / scale, kMaxWork);
+  PatchIntegral I = integratePatch(f, tolerance / scale, max_work);
+  if (!I.converged && I.error > 100.0 * tolerance / scale && tolerance < 1e-2)
+  {
+    // the budget ran out before the structure was even located (a tolerance far tighter than the point allows):
+    // a looser one within half the budget again gives the best answer this budget can
+    const PatchIntegral looser = integratePatch(f, 100.0 * tolerance / scale, max_work / 2);
+    if (looser.error < I.error)
+    {
+      const long work = I.work;
+      I = looser;
+      I.work += work;
+    }
+  }
   if (stats)
   {
     stats->paths = I.paths;

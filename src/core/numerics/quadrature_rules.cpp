@@ -80,4 +80,33 @@ const GaussKronrod15& gaussKronrod15()
   return rule;
 }
 
+const std::array<double, 15>& kronrodComplement()
+{
+  static const std::array<double, 15> weights = [] {
+    const GaussKronrod15& r = gaussKronrod15();
+    std::array<double, 15> w{};
+    for (int j = 0; j < 15; ++j)
+    {
+      if (r.wg[j] != 0.0)
+        continue;
+      // the Lagrange polynomial of node j over the other Kronrod-only nodes, integrated term by term over [-1, 1]
+      double c[8] = { 1.0 };  // ascending coefficients
+      int degree = 0;
+      for (int k = 0; k < 15; ++k)
+      {
+        if (k == j || r.wg[k] != 0.0)
+          continue;
+        const double scale = 1.0 / (r.x[j] - r.x[k]);
+        for (int d = degree + 1; d >= 0; --d)  // c <- c (x - x_k) / (x_j - x_k)
+          c[d] = ((d > 0 ? c[d - 1] : 0.0) - r.x[k] * (d <= degree ? c[d] : 0.0)) * scale;
+        ++degree;
+      }
+      for (int d = 0; d <= degree; d += 2)
+        w[j] += 2.0 * c[d] / (d + 1);
+    }
+    return w;
+  }();
+  return weights;
+}
+
 }  // namespace sphere_contact_estimator::numerics

@@ -4,6 +4,7 @@
 #include <array>
 #include <complex>
 #include <cstdint>
+#include <limits>
 
 // Package
 #include "sphere_contact_estimator/core/brush/brush_parameters.h"
@@ -95,6 +96,12 @@ struct PathIntegrals
   /// the stretch where its onset is searched): > 0 where it starts sliding before the trailing edge. Smooth
   /// across paths, so a sign change between two paths of equal signature shows a band of other structure.
   double onset_margin = 1.0;
+  /// The value of |u|^2 - f^2 at its first interior local maximum along the first adhesion piece (the bristle
+  /// adhering, continued through the piece's stretches); NaN if it has none. Smooth across paths while that maximum
+  /// exists, and 0 where it touches the bound: there the onset of sliding jumps from a later crossing to this one, a
+  /// jump in the path's integrals that the signature shows only on a band of paths as narrow as the dip after the
+  /// maximum. A sign change between two paths of equal signature shows it.
+  double fold = std::numeric_limits<double>::quiet_NaN();
   bool truncated = false;        ///< rates too large for the series budget: the path's tail is not resolved
   /// Work done: series coefficients and rule nodes computed (a measure of cost that does not depend on the
   /// machine, for budgets).

@@ -46,9 +46,10 @@ public:
     int paths = 0;  ///< characteristics solved
     long work = 0;  ///< their work (PathIntegrals::work)
   };
-  /// The same to `tolerance` (a fraction of mu F_z), in (0, 1].
+  /// The same to `tolerance` (a fraction of mu F_z), in (0, 1], within `max_work` (references for tests and
+  /// benchmarks ask for more than kMaxWork).
   BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi, double tolerance,
-                       Stats* stats = nullptr) const;
+                       Stats* stats = nullptr, long max_work = kMaxWork) const;
 
   /// The same, and the field on a regular grid of paths and points along them to visit(x, u, sliding) [m]
   /// (for drawing the zones).
@@ -62,13 +63,15 @@ public:
 
   /// Largest work (PathIntegrals::work) one evaluation may do; beyond, kAccuracyNotMet.
   static constexpr long kMaxWork = 4000000;
+  /// A budget for converged references (tests, benchmarks): about 0.3 s at worst.
+  static constexpr long kReferenceWork = 16 * kMaxWork;
   /// Paths and points per path shown to a visitor.
   static constexpr int kVisitPaths = 24;
   static constexpr int kVisitPoints = 24;
 
 private:
   BrushForces solve(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi, double tolerance,
-                    const Visitor* visit, Stats* stats = nullptr) const;
+                    const Visitor* visit, Stats* stats = nullptr, long max_work = kMaxWork) const;
 };
 
 }  // namespace sphere_contact_estimator

@@ -26,4 +26,9 @@ struct GaussKronrod15
 
 const GaussKronrod15& gaussKronrod15();
 
+/// Weights (on [-1, 1]) of the interpolatory rule on the 8 nodes of gaussKronrod15() that its Gauss rule lacks (exact
+/// to degree 7), in the order of gaussKronrod15().x (0 at the Gauss nodes): a third, lower-degree view of the same
+/// samples, to tell whether the rules converge (a null rule of the error estimate).
+const std::array<double, 15>& kronrodComplement();
+
 }  // namespace sphere_contact_estimator::numerics
