@@ -184,7 +184,8 @@ void randomSection(int n)
         worst = e, worst_i = i;
       over += e > target;
       short_estimate += e > f.error_estimate;
-      ++used[static_cast<int>(model.lastModel())];
+      // linear, steady, transient (BrushModelKind numbers them from 1: Off is 0)
+      ++used[static_cast<int>(model.lastModel()) - static_cast<int>(sce::BrushModelKind::Linear)];
     }
     std::printf("%s\n      {\"target\": %g, \"max_error\": %.3g, \"over_target\": %d, \"estimate_below_error\": %d, "
                 "\"linear\": %d, \"steady\": %d, \"transient\": %d, \"worst\": {%s}}",
