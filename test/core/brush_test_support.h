@@ -2,6 +2,7 @@
 
 // STL
 #include <cmath>
+#include <random>
 
 // Eigen
 #include <Eigen/Core>
@@ -23,6 +24,22 @@ inline BrushParameters figure4Parameters(bool tilt = false, int resolution = 32)
   p.mu = 1.0;
   p.tilt = tilt;
   p.resolution = resolution;
+  return p;
+}
+
+/// The brush parameters of the envelope the random tests draw from (issue 11): a = 0.01-0.08 m, F_z = 20-5000 N
+/// (log-uniform), mu = 0.2-1.2, k = 10^6.5-10^9 N/m^3 (log-uniform), drawn in that order from rng; the pressure
+/// cycles with i, tilt alternates every three.
+inline BrushParameters drawEnvelopeParameters(std::mt19937_64& rng, int i)
+{
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  BrushParameters p;
+  p.a = 0.01 + 0.07 * u(rng);
+  p.F_z = std::exp(std::log(20.0) + std::log(250.0) * u(rng));
+  p.mu = 0.2 + u(rng);
+  p.k = std::pow(10.0, 6.5 + 2.5 * u(rng));
+  p.pressure = static_cast<PressureDistribution>(i % 3);
+  p.tilt = (i / 3) % 2;
   return p;
 }
 

@@ -209,13 +209,7 @@ TEST(BrushAuto, EstimateCoversRandomHistories)
   double worst = 0.0;
   for (int h = 0; h < 48; ++h)
   {
-    BrushParameters p;
-    p.a = 0.01 + 0.07 * u(rng);
-    p.F_z = std::exp(std::log(20.0) + std::log(250.0) * u(rng));
-    p.mu = 0.2 + u(rng);
-    p.k = std::pow(10.0, 6.5 + 2.5 * u(rng));
-    p.pressure = static_cast<PressureDistribution>(h % 3);
-    p.tilt = (h / 3) % 2;
+    BrushParameters p = test::drawEnvelopeParameters(rng, h);
     p.standstill_speed = 0.05;
     p.accuracy_target = 0.01;
     p.resolution = 16;

@@ -54,15 +54,9 @@ struct RandomPoint
 
 RandomPoint drawPoint(std::mt19937_64& rng, int i, double slip_scale = 1.0)
 {
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  const auto logUniform = [&](double lo, double hi) { return std::exp(std::log(lo) + std::log(hi / lo) * u(rng)); };
   RandomPoint q;
-  q.p.a = 0.01 + 0.07 * u(rng);
-  q.p.F_z = logUniform(20.0, 5000.0);
-  q.p.mu = 0.2 + u(rng);
-  q.p.k = std::pow(10.0, 6.5 + 2.5 * u(rng));
-  q.p.pressure = static_cast<PressureDistribution>(i % 3);
-  q.p.tilt = (i / 3) % 2;
+  q.p = test::drawEnvelopeParameters(rng, i);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
   q.sigma = Eigen::Vector2d(0.3 * (2.0 * u(rng) - 1.0), 0.1 * (2.0 * u(rng) - 1.0)) * slip_scale;
   q.phi = (2.0 * u(rng) - 1.0) / q.p.a * slip_scale;
   const double chi = -0.5 + 2.0 * u(rng);

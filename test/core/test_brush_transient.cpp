@@ -260,13 +260,7 @@ TEST(BrushTransient, ErrorEstimateCoversNoisyHistoriesAtRandomPoints)
   double worst = 0.0;
   for (int h = 0; h < 60; ++h)
   {
-    BrushParameters p;
-    p.a = 0.01 + 0.07 * u(rng);
-    p.F_z = std::exp(std::log(20.0) + std::log(250.0) * u(rng));
-    p.mu = 0.2 + u(rng);
-    p.k = std::pow(10.0, 6.5 + 2.5 * u(rng));
-    p.pressure = static_cast<PressureDistribution>(h % 3);
-    p.tilt = (h / 3) % 2;
+    BrushParameters p = test::drawEnvelopeParameters(rng, h);
     p.standstill_speed = 0.05;
     const double scale = std::pow(10.0, -3.0 * u(rng));
     const Eigen::Vector2d base = scale * Eigen::Vector2d(0.3 * (2.0 * u(rng) - 1.0), 0.1 * (2.0 * u(rng) - 1.0));
