@@ -19,6 +19,7 @@
 
 // Package
 #include "sphere_contact_estimator/ContactEstimate.h"
+#include "rolling_odometry.h"
 #include "wait_for.h"
 
 namespace sce = sphere_contact_estimator;
@@ -50,12 +51,7 @@ TEST(NodeletZeroCopy, EstimatesArriveByPointer)
   };
   ASSERT_TRUE(wait(20.0, [&] { return odom_pub.getNumSubscribers() > 0 && estimate_sub.getNumPublishers() > 0; }));
 
-  nav_msgs::Odometry o;
-  o.header.frame_id = "odom";
-  o.child_frame_id = "base_link";
-  o.pose.pose.orientation.w = 1.0;
-  o.twist.twist.angular.y = 10.0;  // 1 m/s at the rolling radius of config/contact_estimator.yaml
-  o.twist.twist.linear.x = 1.02;
+  nav_msgs::Odometry o = sphere_contact_estimator::test::rollingOdometry(1.02);
   const int n = 20;
   for (int i = 0; i < n; ++i)
   {

@@ -17,6 +17,7 @@
 #include <rosgraph_msgs/Clock.h>
 
 // Package
+#include "rolling_odometry.h"
 #include "wait_for.h"
 
 namespace
@@ -46,12 +47,7 @@ TEST(StaleClock, StaleInputIsReportedWhileTheClockIsPaused)
 
   // odometry at 100 Hz for half a second while the clock runs, then the clock and the odometry stop
   rosgraph_msgs::Clock clock;
-  nav_msgs::Odometry o;
-  o.header.frame_id = "odom";
-  o.child_frame_id = "base_link";
-  o.pose.pose.orientation.w = 1.0;
-  o.twist.twist.angular.y = 10.0;  // 1 m/s at the rolling radius of config/contact_estimator.yaml
-  o.twist.twist.linear.x = 1.0;
+  nav_msgs::Odometry o = sphere_contact_estimator::test::rollingOdometry(1.0);
   for (int i = 0; i < 50; ++i)
   {
     clock.clock = ros::Time(100.0 + 0.01 * i);
