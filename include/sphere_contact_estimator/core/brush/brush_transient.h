@@ -9,6 +9,8 @@
 
 // Package
 #include "sphere_contact_estimator/core/brush/brush_model.h"
+#include "sphere_contact_estimator/core/brush/contact_kinematics.h"
+#include "sphere_contact_estimator/core/brush/steady_rows.h"
 
 namespace sphere_contact_estimator
 {
@@ -33,13 +35,28 @@ namespace sphere_contact_estimator
 /// motion) that lies on the other side of the jump or of the edge. That makes the sum second order where the
 /// lattice rows follow the rolling direction, as in the estimator's contact frame.
 ///
+/// Without tilt, while the lattice rows follow the rolling direction (as they do unless the frame was turned with a
+/// bristle state in the patch), the rows are bristle paths and the sum across them is a midpoint rule: a re-adhering
+/// streak narrower than a spacing (where a spin pole lies in the front of the patch) is hit or missed. There the
+/// steady field of the inputs serves as a control variate (SteadyRows): the sum is corrected by the midpoint rule's
+/// error on that field, whose integral and row integrals are known exactly, so that at held inputs the streaks
+/// cancel and only the bristles' own integration error is left (second order, monotone at the example point of
+/// issue 11 and the Fig. 4 points, docs/benchmarks.md). The field is re-evaluated when the inputs were held for an
+/// update or have rolled a quarter patch since (between, the last one is a control variate as good as any: the
+/// correction stays exact for whatever field it uses).
+///
+/// A sliding bristle re-adheres where its path enters G (the bound grows faster along the motion than the drive
+/// pushes: docs/conventions.md), located within the substep in closed form; a sliding bristle that does not enter G
+/// is put on the bound along the sliding field.
+///
 /// error_estimate: twice the largest change of the forces (F_x, F_y, M_z / a, a fraction of mu F_z) when the
-/// sum is taken over any of the four sub-lattices of twice the spacing instead; the sum's error falls at least
-/// as fast as the spacing, so the coarser sum is at least as far off, and the factor 2 covers the irregular
-/// part of the error (cells cut by the edge and by the onsets), measured over noisy histories at random
-/// operating points. Re-adhering streaks narrower than three spacings (where a spin pole lies in the front of
-/// the patch), which no lattice row may cross, add their largest possible force (streakBound); the steady
-/// model resolves those exactly.
+/// sum is taken over any of the four sub-lattices of twice the spacing instead (each with its own rows' correction);
+/// the sum's error falls at least as fast as the spacing, so the coarser sum is at least as far off, and the factor
+/// 2 covers the irregular part of the error (cells cut by the edge and by the onsets), measured over noisy histories
+/// at random operating points. Plus the steady field's own error where it corrects the rows. Re-adhering streaks
+/// narrower than three spacings, which no lattice row may cross, add their largest possible force (streakBound),
+/// except where the rows' correction holds them: the inputs held for the longest path (every bristle in the patch
+/// entered under them).
 ///
 /// update() advances by the caller's dt in substeps that keep each bristle's path within half a lattice
 /// spacing and every rotation below 0.1 rad; at most kMaxSubsteps of them (flagged when that is short).
@@ -104,6 +121,11 @@ private:
   void substep(const ContactKinematics& kin, double dt);
   void recentre();
   double streakBound(const ContactKinematics& kin) const;
+  void correctRows(const ContactKinematics& kin, bool held, double travel);
+  // the rows' correction of sub-lattice k (0: the full lattice) in the patch frame [N, N, N m], and which rows
+  // that sum runs over (0: all; 1, 2: even, odd)
+  Eigen::Vector3d rowCorrection(int k) const;
+  int rowSet(int k) const;
 
   double h_;                      // lattice spacing
   int w_;                         // window width in lattice points
@@ -123,6 +145,18 @@ private:
   Eigen::Vector2d V_r_ = Eigen::Vector2d::Zero();
   double omega_gamma_ = 0.0;
   double streak_estimate_ = 0.0;  // streakBound of the last update's inputs
+  // the rows' control variate (no tilt, rows along the rolling direction)
+  bool rows_active_ = false;
+  int row_axis_ = 0;               // rows of constant j (motion along the lattice's x) or of constant i (along y)
+  SteadyRows rows_;                // of rows_sigma_, rows_phi_ at the rows' place rows_y_first_
+  Eigen::Vector2d rows_sigma_ = Eigen::Vector2d::Constant(NAN);
+  double rows_phi_ = NAN, rows_y_first_ = NAN, rows_spacing_ = NAN, rows_travel_ = 0.0;
+  double rows_c_ = 1.0, rows_s_ = 0.0;  // the rolling direction in the patch frame
+  double rows_scale_ = 0.0;        // dimensionless integrals -> [N]
+  double rows_load_[3] = {};       // the rows' exact integrals of q_z [N] (all rows, even, odd)
+  ContactKinematics last_kin_;     // the inputs of the last update, and how far the patch rolled under them
+  bool have_last_kin_ = false;
+  double held_travel_ = 0.0;
 };
 
 }  // namespace sphere_contact_estimator

@@ -50,6 +50,42 @@ public:
     return 0.0;
   }
 
+  /// The growth of the bound mu q_z / k with r^2 [m/m^2]: d(mu q_z / k) / d(r^2) (0 off the patch, and for the
+  /// uniform pressure; unbounded at the edge for the Hertzian one).
+  double boundSlope(double r2) const
+  {
+    const double t = 1.0 - r2 * inv_a2_;
+    if (t <= 0.0)
+      return 0.0;
+    switch (pressure_)
+    {
+      case PressureDistribution::Parabolic:
+        return -mu_over_k_ * q0_ * inv_a2_;
+      case PressureDistribution::Hertzian:
+        return -0.5 * mu_over_k_ * q0_ * inv_a2_ / std::sqrt(t);
+      case PressureDistribution::Uniform:
+        return 0.0;
+    }
+    return 0.0;
+  }
+
+  /// Puts a sliding bristle at x [m] on the bound along w (u = mu q_z / k w / |w|), whatever its deflection was.
+  Result slide(Eigen::Vector2d& u, const Eigen::Vector2d& x, const Eigen::Vector2d& w) const
+  {
+    const double r2 = x.squaredNorm();
+    if (r2 * inv_a2_ >= edge_)
+    {
+      u.setZero();
+      return {};
+    }
+    const double q_z = qz(r2), bound = mu_over_k_ * q_z, wn = w.norm();
+    if (wn > 0.0)
+      u = bound / wn * w;
+    else if (u.squaredNorm() > 0.0)
+      u *= bound / u.norm();
+    return { true, 1.0, q_z };
+  }
+
   /// Caps the deflection u [m] of the bristle at x [m] in place; w gives the sliding direction.
   Result apply(Eigen::Vector2d& u, const Eigen::Vector2d& x, const Eigen::Vector2d& w) const
   {
