@@ -3,6 +3,8 @@
 
 // STL
 #include <cmath>
+#include <random>
+#include <vector>
 #include <string>
 
 // Google Benchmark
@@ -96,6 +98,29 @@ void BM_BrushTransientStep(benchmark::State& state)
     benchmark::DoNotOptimize(model.update(kKinematics, 1e-3));
 }
 BENCHMARK(BM_BrushTransientStep)->ArgsProduct({ { 8, 12, 16, 24, 32, 48 }, { 0, 1 } })->ArgNames({ "resolution", "tilt" });
+
+// The same with noise on the slips and the spin at every step (recorded odometry): the inputs are never held, so the
+// rows' correction (no tilt) is re-evaluated each quarter patch of travel.
+void BM_BrushTransientNoisyStep(benchmark::State& state)
+{
+  sce::BrushTransient model(figure4(static_cast<int>(state.range(0)), state.range(1) != 0));
+  model.update(kKinematics, 0.2);  // settle
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::vector<sce::ContactKinematics> steps;
+  for (int i = 0; i < 1000; ++i)
+    steps.push_back(sce::ContactKinematics::fromSlips({ 0.05 + 0.005 * noise(rng), 0.02 + 0.005 * noise(rng) },
+                                                      3.33 + 0.1 * noise(rng), 0.9, 1.0));
+  std::size_t i = 0;
+  for (auto _ : state)
+  {
+    benchmark::DoNotOptimize(model.update(steps[i], 1e-3));
+    i = (i + 1) % steps.size();
+  }
+}
+BENCHMARK(BM_BrushTransientNoisyStep)
+    ->ArgsProduct({ { 8, 12, 16, 24, 32, 48 }, { 0, 1 } })
+    ->ArgNames({ "resolution", "tilt" });
 
 // a sweep through the contact-patch regime
 template <class Model>

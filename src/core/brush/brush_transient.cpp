@@ -64,7 +64,9 @@ double reAdhesionEntry(const ContactKinematics& k, const FrictionCap& cap, const
                        const Eigen::Vector2d& x1)
 {
   const auto growth = [&](const Eigen::Vector2d& x) { return -2.0 * x.dot(k.V_r) * cap.boundSlope(x.squaredNorm()); };
-  const double L0 = growth(x0), dL = growth(x1) - L0;
+  const double L0 = growth(x0), L1 = growth(x1), dL = L1 - L0;
+  if (L0 < 0.0 && L1 < 0.0)
+    return -1.0;  // the bound shrinks all along (the rear half): no G
   const Eigen::Vector2d w0 = drive(k, x0), dw = drive(k, x1) - w0;
   const auto inside = [&](double s) {
     const double L = L0 + s * dL;
