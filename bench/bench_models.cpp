@@ -100,7 +100,7 @@ void BM_BrushTransientStep(benchmark::State& state)
 BENCHMARK(BM_BrushTransientStep)->ArgsProduct({ { 8, 12, 16, 24, 32, 48 }, { 0, 1 } })->ArgNames({ "resolution", "tilt" });
 
 // The same with noise on the slips and the spin at every step (recorded odometry): the inputs are never held, so the
-// rows' correction (no tilt) is re-evaluated each quarter patch of travel.
+// rows' correction (no tilt) is re-evaluated each patch radius of travel.
 void BM_BrushTransientNoisyStep(benchmark::State& state)
 {
   sce::BrushTransient model(figure4(static_cast<int>(state.range(0)), state.range(1) != 0));

@@ -357,7 +357,7 @@ def transient_section(acc, g):
                                  w["resolution"]))
     lines += ["", "One 1 ms step at 1 m/s (a 1 kHz driver) in steady rolling at σ = (0.05, 0.02), φ = 3.33 1/m,"
               " χ_γ = 0.9 on the Fig. 4 parameters, at held inputs and with noise on the slips and the spin at every"
-              " step (the rows' correction is then re-evaluated each quarter patch of travel):", "",
+              " step (the rows' correction is then re-evaluated each patch radius of travel):", "",
               "| resolution | time | time, tilt | time, noisy | time, noisy, tilt |", "|---|---|---|---|---|"]
     for n in sorted(set(n for n, _ in g["transient"])):
         lines.append("| %d | %s | %s | %s | %s |" % (

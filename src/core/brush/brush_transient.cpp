@@ -369,7 +369,7 @@ void BrushTransient::correctRows(const ContactKinematics& kin, bool held, double
   const bool moved = !(std::abs(y_first - rows_y_first_) <= 1e-12 && std::abs(spacing - rows_spacing_) <= 1e-12) ||
                      frame.toPatch(Eigen::Vector2d(1.0, 0.0)) != Eigen::Vector2d(rows_c_, rows_s_);
   rows_travel_ += travel;
-  if (moved || (!same && (held || rows_travel_ >= 0.5 * p_.a)))
+  if (moved || (!same && (held || rows_travel_ >= p_.a)))
   {
     BristleField field;
     if (!makeBristleField(p_, { sigma.x(), sigma.y() }, s.phi, 0.0, 0.0, field))
@@ -377,9 +377,9 @@ void BrushTransient::correctRows(const ContactKinematics& kin, bool held, double
       rows_phi_ = NAN;
       return;  // no load or no friction: no force to correct
     }
-    // a hundredth of the lattice's error scale (about 1 / n^2 of mu F_z at resolution n, docs/benchmarks.md)
+    // a twentieth of the lattice's error scale (about 1 / n^2 of mu F_z at resolution n, docs/benchmarks.md)
     const double scale = peakFactor(p_.pressure) / boost::math::double_constants::pi;  // -> fractions of mu F_z
-    const double tolerance = 0.01 / (static_cast<double>(p_.resolution) * p_.resolution);
+    const double tolerance = 0.05 / (static_cast<double>(p_.resolution) * p_.resolution);
     rows_ = evaluateSteadyRows(field, y_first, spacing, w_, tolerance / scale, BrushSteady::kMaxWork);
     rows_sigma_ = sigma;
     rows_phi_ = s.phi;

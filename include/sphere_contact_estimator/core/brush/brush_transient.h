@@ -42,7 +42,7 @@ namespace sphere_contact_estimator
 /// error on that field, whose integral and row integrals are known exactly, so that at held inputs the streaks
 /// cancel and only the bristles' own integration error is left (second order, monotone at the example point of
 /// issue 11 and the Fig. 4 points, docs/benchmarks.md). The field is re-evaluated when the inputs were held for an
-/// update or have rolled a quarter patch since (between, the last one is a control variate as good as any: the
+/// update or have rolled a patch radius since (between, the last one is a control variate as good as any: the
 /// correction stays exact for whatever field it uses).
 ///
 /// A sliding bristle re-adheres where its path enters G (the bound grows faster along the motion than the drive
