@@ -15,6 +15,7 @@
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
 #include "sphere_contact_estimator/core/brush/brush_transient.h"
 #include "sphere_contact_estimator/core/brush/contact_kinematics.h"
+#include "sphere_contact_estimator/core/brush/force_covariance.h"
 
 namespace sphere_contact_estimator::cli
 {
@@ -136,6 +137,10 @@ CLI::App* addBrushCommand(CLI::App& app, BrushOptions& o)
   sub->add_option("--pressure", o.pressure, "parabolic | hertzian | uniform")->capture_default_str();
   sub->add_option("--distance", o.distance,
                   "transient: distance travelled from undeformed at constant slips [m] (default 4a: steady state)");
+  sub->add_option("--covariance", o.covariance,
+                  "CXX CXY CXPHI CYY CYPHI CPHIPHI: the covariance of (sigma_x, sigma_y, phi) [-, -, 1/m; 1/m^2]; adds "
+                  "the covariance of (F_x, F_y, M_z) and the method used")
+      ->expected(6);
   return sub;
 }
 
@@ -147,6 +152,8 @@ void runBrushCommand(const BrushOptions& o, std::ostream& out)
   for (const auto& [x, flag] : { std::pair{ o.sigma_x, "--sigma-x" }, { o.sigma_y, "--sigma-y" }, { o.phi, "--phi" },
                                  { o.tilt_ratio, "--tilt-ratio" } })
     requireFinite(x, flag);
+  for (double x : o.covariance)
+    requireFinite(x, "--covariance");
   BrushParameters p = o.parameters;
   if (o.pressure == "parabolic")
     p.pressure = PressureDistribution::Parabolic;
@@ -217,6 +224,33 @@ void runBrushCommand(const BrushOptions& o, std::ostream& out)
     j["resolution"] = p.resolution;
   if (advances)
     j["distance"] = distance;
+  if (!o.covariance.empty())
+  {
+    // the forces' uncertainty from the slips', by the model's own propagation (force_covariance.h)
+    Eigen::Matrix3d S;
+    S << o.covariance[0], o.covariance[1], o.covariance[2],  //
+        o.covariance[1], o.covariance[3], o.covariance[4],  //
+        o.covariance[2], o.covariance[4], o.covariance[5];
+    if (const char* problem = covarianceProblem<3>(S))
+      throw std::invalid_argument(std::string("--covariance is ") + problem + ": give the upper triangle of a covariance "
+                                  "of (sigma_x, sigma_y, phi), CXX CXY CXPHI CYY CYPHI CPHIPHI");
+    const ForceCovariance c = propagateSlipCovariance(ran == BrushModelKind::Linear ? BrushModelKind::Linear : BrushModelKind::Steady,
+                                                      p, sigma, o.phi, o.tilt_ratio, S);
+    if (c.defined)
+    {
+      nlohmann::ordered_json flat = nlohmann::ordered_json::array();
+      for (int i = 0; i < 9; ++i)
+        flat.push_back(number(c.covariance(i / 3, i % 3)));
+      j["covariance"] = flat;
+      j["std"] = { number(std::sqrt(c.covariance(0, 0))), number(std::sqrt(c.covariance(1, 1))),
+                   number(std::sqrt(c.covariance(2, 2))) };
+    }
+    else
+      j["covariance"] = nullptr;
+    j["covariance_method"] = toString(c.method);
+    if (!c.defined)
+      j["warnings"].push_back("no covariance: the steady state does not exist over the inputs' spread (|R_gamma| < a)");
+  }
   out << j.dump(2) << '\n';
 }
 

@@ -34,6 +34,8 @@ struct BrushOptions
   std::optional<double> patch_radius, contact_modulus, sphere_radius;
   std::optional<double> distance;
   std::string pressure = "parabolic";
+  /// --covariance CXX CXY CXPHI CYY CYPHI CPHIPHI: the symmetric covariance of (sigma_x, sigma_y, phi), empty: none
+  std::vector<double> covariance;
   BrushParameters parameters = accurate();
 
   /// The CLI favours accuracy over speed: resolution 64 (0.03 % of mu F_z for the steady model in

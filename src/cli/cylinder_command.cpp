@@ -10,6 +10,7 @@
 #include "cli/json_output.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_model.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_peak.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_spread.h"
 
 namespace sphere_contact_estimator::cli
 {
@@ -33,6 +34,9 @@ CLI::App* addCylinderCommand(CLI::App& app, CylinderOptions& o)
   speed->excludes(sweep)->excludes(peak);
   sweep->excludes(peak);
   sub->add_flag("--log", o.log_sweep, "space the --sweep speeds geometrically (VMIN > 0)");
+  sub->add_option("--speed-std", o.speed_std,
+                  "standard deviation of the speed [m/s]: adds F_R_std, F_R_per_length_std and mu_roll_std (unscented "
+                  "transform through the model)");
   sub->add_option("--table-size", o.table_size, "number of tabulated speeds (--model table)")->capture_default_str();
   sub->add_option("--table-vmax", o.table_v_max, "upper end of the table [m/s]; 0 = up to the critical speed")
       ->capture_default_str();
@@ -79,22 +83,39 @@ void runCylinderCommand(const CylinderOptions& o, std::ostream& out)
   else
     model = makeCylinderModel(*kind, o.parameters);
 
+  // the state at v, with the spread of F_R and mu_roll when the speed is uncertain
+  const auto state = [&](double x) {
+    nlohmann::ordered_json j = toJson(model->solve(x), *model);
+    if (o.speed_std)
+    {
+      const CylinderSpread s = cylinderSpread(*model, x, *o.speed_std);
+      const double L = model->parameters().L;
+      j["speed_std"] = *o.speed_std;
+      j["F_R_std"] = number(L * std::sqrt(s.F_R_variance));
+      j["F_R_per_length_std"] = number(std::sqrt(s.F_R_variance));
+      j["mu_roll_std"] = number(std::sqrt(s.mu_roll_variance));
+      j["spread_method"] = toString(s.method);
+    }
+    return j;
+  };
+  if (o.speed_std && !(std::isfinite(*o.speed_std) && *o.speed_std >= 0.0))
+    throw std::invalid_argument("--speed-std must be finite and >= 0 [m/s]");
   if (o.peak)
   {
     const std::optional<CylinderPeak> found = findPeak(*model);
     if (!found)
       throw std::invalid_argument("no maximum of mu_roll: without damping (gamma = 0) there is no resistance peak");
-    out << toJson(model->solve(found->v), *model).dump(2) << '\n';
+    out << state(found->v).dump(2) << '\n';
     return;
   }
   if (o.speed.size() == 1)
   {
-    out << toJson(model->solve(v.front()), *model).dump(2) << '\n';
+    out << state(v.front()).dump(2) << '\n';
     return;
   }
   nlohmann::ordered_json all = nlohmann::ordered_json::array();
   for (double x : v)
-    all.push_back(toJson(model->solve(x), *model));
+    all.push_back(state(x));
   out << all.dump(2) << '\n';
 }
 

@@ -3,6 +3,7 @@
 // STL
 #include <cstddef>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@ struct CylinderOptions
   std::string model = "exact";
   std::size_t table_size = CylinderTable::kDefaultSize;
   double table_v_max = 0.0;
+  std::optional<double> speed_std;  ///< --speed-std S: the speed's standard deviation [m/s]
 };
 
 /// Registers the `cylinder` subcommand and its flags on app.

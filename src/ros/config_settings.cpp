@@ -46,6 +46,8 @@ EstimatorSettings settingsFromConfig(const ContactEstimatorConfig& c)
   s.surface_density = c.surface_density;
   s.mass_per_length = c.mass_per_length;
   s.effective_length = c.effective_length;
+  s.propagate_covariance = c.propagate_covariance;
+  s.auto_noise_fraction = c.auto_noise_fraction;
   return s;
 }
 

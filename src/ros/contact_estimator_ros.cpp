@@ -28,6 +28,7 @@ ContactEstimatorRos::ContactEstimatorRos(ros::NodeHandle nh, ros::NodeHandle pnh
   updater_.add("odometry input", this, &ContactEstimatorRos::diagnoseInput);
   updater_.add("tf", this, &ContactEstimatorRos::diagnoseTf);
   updater_.add("contact models", this, &ContactEstimatorRos::diagnoseModels);
+  updater_.add("uncertainty", this, &ContactEstimatorRos::diagnoseUncertainty);
   window_start_ = ros::WallTime::now();
 
   // Numbers that YAML 1.1 read as text, enum names, values out of range: the server would drop or clamp them in
@@ -127,6 +128,11 @@ void ContactEstimatorRos::odometryCallback(const nav_msgs::Odometry::ConstPtr& m
   last_regime_ = static_cast<std::uint8_t>(e.rolling_resistance.regime);
   last_flags_ = out->estimate.flags;
   have_estimate_ = true;
+  last_covariance_status_ = e.covariance.status;
+  last_spread_ = e.covariance.brush_method == CovarianceMethod::None ? 0.0 : e.covariance.brush_spread;
+  spread_max_ = std::max(spread_max_, last_spread_);
+  if (config_.uncertainty_warning > 0.0 && last_spread_ > config_.uncertainty_warning)
+    ++over_spread_;
 }
 
 void ContactEstimatorRos::publishMarkers(const ContactEstimateData& e, const std_msgs::Header& header)
@@ -286,6 +292,38 @@ void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWra
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "models valid");
   else
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, problems);
+}
+
+void ContactEstimatorRos::diagnoseUncertainty(diagnostic_updater::DiagnosticStatusWrapper& status)
+{
+  // how far the odometry's own uncertainty moves the forces: past uncertainty_warning of mu F_z an estimate is of
+  // little use to a controller
+  std::lock_guard<std::mutex> lock(mutex_);
+  const OdometryEstimator::Counters& c = estimator_.counters();
+  status.add("covariance status", toString(last_covariance_status_));
+  status.add("force spread, last [fraction of mu F_z]", last_spread_);
+  status.add("force spread, largest since the last report", spread_max_);
+  status.add("warning above", config_.uncertainty_warning);
+  status.add("unusable twist covariances", c.bad_covariance);
+  const char* problem = estimator_.lastCovarianceProblem();
+  status.add("last covariance problem", problem ? problem : "");
+  std::string problems;
+  const auto note = [&problems](const std::string& text) { problems += (problems.empty() ? "" : "; ") + text; };
+  if (over_spread_ > 0)
+    note(std::to_string(over_spread_) + " estimates with a force spread above " +
+         std::to_string(config_.uncertainty_warning) + " of mu F_z (largest " + std::to_string(spread_max_) + ")");
+  if (c.bad_covariance > reported_bad_covariance_)
+    note(std::to_string(c.bad_covariance - reported_bad_covariance_) + " twist covariances unusable (" +
+         (problem ? problem : "?") + "): estimates without uncertainty");
+  reported_bad_covariance_ = c.bad_covariance;
+  over_spread_ = 0;
+  spread_max_ = 0.0;
+  if (!problems.empty())
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, problems);
+  else if (last_covariance_status_ == CovarianceStatus::Disabled)
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "propagation off");
+  else
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "forces' spread within the warning level");
 }
 
 }  // namespace sphere_contact_estimator

@@ -34,6 +34,17 @@ static_assert(RollingResistance::MODEL_OFF == static_cast<int>(CylinderModelKind
               RollingResistance::MODEL_EXPANSION == static_cast<int>(CylinderModelKind::Expansion) &&
               RollingResistance::MODEL_TABLE == static_cast<int>(CylinderModelKind::Table));
 
+static_assert(ContactEstimate::COVARIANCE_OK == static_cast<int>(CovarianceStatus::Ok) &&
+              ContactEstimate::COVARIANCE_DISABLED == static_cast<int>(CovarianceStatus::Disabled) &&
+              ContactEstimate::COVARIANCE_UNKNOWN == static_cast<int>(CovarianceStatus::Unknown) &&
+              ContactEstimate::COVARIANCE_INVALID == static_cast<int>(CovarianceStatus::Invalid) &&
+              ContactEstimate::COVARIANCE_UNDEFINED == static_cast<int>(CovarianceStatus::Undefined) &&
+              ContactEstimate::COVARIANCE_APPROXIMATE == static_cast<int>(CovarianceStatus::Approximate));
+static_assert(ContactEstimate::COVARIANCE_METHOD_NONE == static_cast<int>(CovarianceMethod::None) &&
+              ContactEstimate::COVARIANCE_METHOD_ZERO == static_cast<int>(CovarianceMethod::Zero) &&
+              ContactEstimate::COVARIANCE_METHOD_JACOBIAN == static_cast<int>(CovarianceMethod::Jacobian) &&
+              ContactEstimate::COVARIANCE_METHOD_UNSCENTED == static_cast<int>(CovarianceMethod::Unscented));
+
 void toMessage(const ContactEstimateData& e, ContactEstimate& m)
 {
   m.rolling_speed = e.rolling_speed;
@@ -85,6 +96,14 @@ void toMessage(const ContactEstimateData& e, ContactEstimate& m)
   r.flags = c.flags;
   r.valid = e.rolling_resistance_model == CylinderModelKind::Off || c.valid();
   m.rolling_resistance_power = e.rolling_resistance_power;
+
+  const EstimateCovariance& v = e.covariance;
+  m.covariance_status = static_cast<uint8_t>(v.status);
+  m.brush_covariance_method = static_cast<uint8_t>(v.brush_method);
+  for (int i = 0; i < 9; ++i)
+    m.brush_covariance[i] = v.brush_method == CovarianceMethod::None ? (i == 0 ? -1.0 : 0.0) : v.brush(i / 3, i % 3);
+  m.rolling_resistance_force_variance =
+      v.rolling_resistance_method == CovarianceMethod::None ? -1.0 : v.rolling_resistance_force_variance;
 
   m.valid = e.valid();
   m.flags = e.flags;

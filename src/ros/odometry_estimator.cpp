@@ -142,6 +142,22 @@ const EstimateOutputs* OdometryEstimator::process(const nav_msgs::Odometry& msg,
   in.stamp = msg.header.stamp.toSec();
   in.omega = q * vector(msg.twist.twist.angular);
   in.v_contact = q * vector(msg.twist.twist.linear);
+  // its covariance (row-major, linear x, y, z, angular x, y, z) the same way, checked first; linear z is never used
+  // and often marked unknown or huge by planar odometry, so it counts as exact (its row and column dropped)
+  TwistCovariance C = Eigen::Map<const Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(msg.twist.covariance.data());
+  const char* problem = nullptr;
+  in.twist_covariance_status = checkTwistCovariance(C, &problem);
+  if (in.twist_covariance_status == CovarianceStatus::Ok)
+  {
+    C.row(2).setZero();
+    C.col(2).setZero();
+    in.twist_covariance = rotateTwistCovariance(C, q.toRotationMatrix());
+  }
+  else
+  {
+    ++counters_.bad_covariance;
+    last_covariance_problem_ = problem;
+  }
   const ContactEstimateData* e = estimator_.update(in);
   if (!e)
   {

@@ -53,6 +53,8 @@ TEST(Parameters, CfgDefaultsAreTheCoreDefaults)
   SAME(surface_density);
   SAME(mass_per_length);
   SAME(effective_length);
+  SAME(propagate_covariance);
+  SAME(auto_noise_fraction);
 #undef SAME
 }
 

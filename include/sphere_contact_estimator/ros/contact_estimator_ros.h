@@ -66,6 +66,7 @@ private:
   void diagnoseInput(diagnostic_updater::DiagnosticStatusWrapper& status);
   void diagnoseTf(diagnostic_updater::DiagnosticStatusWrapper& status);
   void diagnoseModels(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void diagnoseUncertainty(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   // **** ROS-related
   ros::NodeHandle nh_, pnh_;
@@ -100,6 +101,10 @@ private:
   std::uint32_t last_brush_flags_ = 0, last_rr_flags_ = 0, last_flags_ = 0;
   std::uint8_t last_regime_ = 0;
   bool have_estimate_ = false;
+  // the forces' propagated spread since the last report (a fraction of mu F_z), and the statuses seen
+  double spread_max_ = 0.0, last_spread_ = 0.0;
+  std::uint64_t over_spread_ = 0, reported_bad_covariance_ = 0;
+  CovarianceStatus last_covariance_status_ = CovarianceStatus::Disabled;
 };
 
 }  // namespace sphere_contact_estimator

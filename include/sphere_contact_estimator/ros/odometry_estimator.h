@@ -67,9 +67,12 @@ public:
   {
     std::uint64_t tf_at_stamp = 0, tf_latest = 0, from_odometry = 0, no_orientation = 0, rejected = 0,
                   time_jumps = 0;
+    std::uint64_t bad_covariance = 0;  ///< twist covariances marked unknown or invalid (the estimate goes on without)
   };
   const Counters& counters() const { return counters_; }
   const std::string& lastTfError() const { return last_tf_error_; }
+  /// Why the last unusable twist covariance was refused (nullptr before any).
+  const char* lastCovarianceProblem() const { return last_covariance_problem_; }
 
 private:
   void configureFrames(const ContactEstimatorConfig& config);
@@ -86,6 +89,7 @@ private:
   EstimateOutputs out_;
   Counters counters_;
   std::string last_tf_error_;
+  const char* last_covariance_problem_ = nullptr;
 };
 
 }  // namespace sphere_contact_estimator

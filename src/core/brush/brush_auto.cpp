@@ -57,6 +57,13 @@ void BrushAuto::rotateFrame(double alpha)
   offset_.F_y = offset.y();
 }
 
+double BrushAuto::effectiveTarget() const
+{
+  // Below the noise: an answer within a fraction f of the forces' own standard deviation s adds to their spread at
+  // most f s, or in quadrature (an error independent of the noise) a share sqrt(1 + f^2) - 1 of it.
+  return std::max(p_.accuracy_target, p_.auto_noise_fraction * input_spread_);
+}
+
 void BrushAuto::reset()
 {
   transient_->reset();
@@ -169,7 +176,7 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
   checkInput(kin, dt);
   const Slips s = computeSlips(kin, p_.standstill_speed);
   last_slips_ = s;
-  const double target = p_.accuracy_target;
+  const double target = target_ = effectiveTarget();
   const BrushModelKind before = last_model_;
   const int before_resolution = last_resolution_;
   const RollingFrame frame(s.defined ? s.epsilon : Eigen::Vector2d(0.0, 1.0));
@@ -316,7 +323,7 @@ void BrushAuto::carryAcrossSwitches(BrushForces& out, const Slips& s, const Eige
 {
   // Continuity: at a switch, carry the difference from the previous model's answer and let it decay (the first
   // answer after a reset has nothing to be continuous with).
-  const double target = p_.accuracy_target;
+  const double target = target_;
   if (answered_ && (model != before || resolution != before_resolution))
   {
     BrushForces previous = out;

@@ -60,6 +60,8 @@ void BrushParameters::validate() const
           "finite and > 0 [m/s]");
   require(finite(accuracy_target) && accuracy_target > 0.0 && accuracy_target <= 1.0, "accuracy target",
           accuracy_target, "in (0, 1] (relative to mu F_z)");
+  require(finite(auto_noise_fraction) && auto_noise_fraction >= 0.0 && auto_noise_fraction <= 1.0,
+          "auto noise fraction", auto_noise_fraction, "in [0, 1]");
 }
 
 double BrushParameters::qz(double r2) const
@@ -84,7 +86,7 @@ bool operator==(const BrushParameters& a, const BrushParameters& b)
 {
   return a.a == b.a && a.k == b.k && a.F_z == b.F_z && a.mu == b.mu && a.pressure == b.pressure && a.tilt == b.tilt &&
          a.resolution == b.resolution && a.standstill_speed == b.standstill_speed &&
-         a.accuracy_target == b.accuracy_target;
+         a.accuracy_target == b.accuracy_target && a.auto_noise_fraction == b.auto_noise_fraction;
 }
 
 double contactRadiusHertz(double F_z, double R, double E_star)

@@ -2,10 +2,12 @@
 
 // Package
 #include "sphere_contact_estimator/core/estimator/paper_frame.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_spread.h"
 
 // STL
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 // Boost
 #include <boost/math/constants/constants.hpp>
@@ -131,8 +133,10 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   o.turn_rate = psi_dot;
   o.rolling_speed = speed;
   const ContactKinematics kin = contactKinematics(in, psi_dot, o);
+  propagateBrushCovariance(in, speed, o);
   runBrush(kin, o.dt, in.omega.z(), o);
   runRollingResistance(speed, o);
+  propagateRollingResistanceCovariance(speed, o);
   o.compute_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return &o;
 }
@@ -236,6 +240,7 @@ void ContactEstimator::runBrush(const ContactKinematics& kin, double dt, double 
   o.load = load_;
   if (brush_)
   {
+    brush_->setInputSpread(o.covariance.brush_method == CovarianceMethod::None ? 0.0 : o.covariance.brush_spread);
     o.brush = brush_->update(kin, dt);
     o.brush_model_used = brush_->lastModel();
     o.brush_resolution = brush_->lastResolution();
@@ -261,6 +266,89 @@ void ContactEstimator::runRollingResistance(double speed, ContactEstimateData& o
     o.rolling_resistance_torque = o.rolling_resistance.torque * cylinder_->parameters().L;
   }
   o.rolling_resistance_power = o.rolling_resistance_force * speed;
+}
+
+void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double speed, ContactEstimateData& o) const
+{
+  // the twist's covariance to the slips by the exact Jacobian of eqs. 2, 12, 13, then through the brush model
+  EstimateCovariance& c = o.covariance;
+  c = EstimateCovariance{};
+  if (!settings_.propagate_covariance)
+  {
+    c.status = CovarianceStatus::Disabled;
+    return;
+  }
+  c.status = in.twist_covariance_status;
+  if (c.status != CovarianceStatus::Ok)
+    return;
+  const Eigen::Matrix<double, 5, 5> S = usedTwistCovariance(in.twist_covariance);
+  const double R = settings_.rolling_radius;
+  const Eigen::Matrix<double, 1, 5> dV = speedJacobian(R, heading_);
+  c.rolling_speed_variance = (dV * S * dV.transpose())(0, 0);
+  if (!std::isfinite(c.rolling_speed_variance))
+  {
+    c = EstimateCovariance{};
+    c.status = CovarianceStatus::Invalid;  // finite, but too large to carry through
+    return;
+  }
+  if (!brush_)
+    return;
+  if (!o.slips_defined)
+  {
+    c.status = CovarianceStatus::Undefined;  // no slips at standstill: the forces have no stateless map here
+    return;
+  }
+  const Eigen::Matrix<double, 4, 5> K = slipJacobian(in.omega, in.v_contact.head<2>(), R, heading_);
+  Eigen::Matrix4d slips = K * S * K.transpose();
+  slips = 0.5 * (slips + slips.transpose());
+  const BrushParameters& p = brush_->parameters();
+  const BrushModelKind kind =
+      settings_.brush_model == BrushModelKind::Linear ? BrushModelKind::Linear : BrushModelKind::Steady;
+  ForceCovariance f;
+  try
+  {
+    f = propagateSlipCovariance(kind, p, paper_frame::fromRos(o.slip), paper_frame::zFromRos(o.spin), o.tilt_ratio,
+                                slips);
+  }
+  catch (const std::invalid_argument&)
+  {
+    c = EstimateCovariance{};
+    c.status = CovarianceStatus::Invalid;  // the slips' covariance overflowed
+    return;
+  }
+  if (!f.defined)
+  {
+    c.status = CovarianceStatus::Undefined;
+    return;
+  }
+  // paper (x, y, z) = ROS (x, -y, -z): F_y and M_z change sign
+  const Eigen::Matrix3d D = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+  c.brush = D * f.covariance * D;
+  c.brush_method = f.method;
+  c.brush_spread = f.spread(p);
+  if (!c.brush.allFinite())
+  {
+    c = EstimateCovariance{};
+    c.status = CovarianceStatus::Invalid;
+    return;
+  }
+  // the slips divide by V_r: where its spread reaches the standstill speed, the linearisation is out of its range
+  if (speed - 3.0 * std::sqrt(c.rolling_speed_variance) < settings_.standstill_speed)
+    c.status = CovarianceStatus::Approximate;
+}
+
+void ContactEstimator::propagateRollingResistanceCovariance(double speed, ContactEstimateData& o) const
+{
+  EstimateCovariance& c = o.covariance;
+  const bool carried = c.status == CovarianceStatus::Ok || c.status == CovarianceStatus::Undefined ||
+                       c.status == CovarianceStatus::Approximate;
+  if (!cylinder_ || !carried)
+    return;
+  const CylinderSpread s = cylinderSpread(*cylinder_, speed, std::sqrt(c.rolling_speed_variance));
+  const double L = cylinder_->parameters().L;
+  c.rolling_resistance_method = s.method;
+  c.rolling_resistance_force_variance = s.F_R_variance * L * L;
+  c.mu_roll_variance = s.mu_roll_variance;
 }
 
 void ContactEstimator::visitBristles(const std::function<void(const Eigen::Vector2d& x, bool sliding)>& visit) const

@@ -27,6 +27,7 @@ BrushParameters EstimatorSettings::brushParameters() const
   p.resolution = resolution;
   p.standstill_speed = standstill_speed;
   p.accuracy_target = accuracy_target;
+  p.auto_noise_fraction = auto_noise_fraction;
   return p;
 }
 
@@ -59,6 +60,8 @@ void EstimatorSettings::validate() const
   require(finite(max_step) && max_step > 0.0, "max_step", max_step, "finite and > 0 [s]");
   require(finite(mass_per_length) && mass_per_length >= 0.0, "mass_per_length", mass_per_length,
           "finite and >= 0 [kg/m] (0: load / (gravity effective_length))");
+  require(finite(auto_noise_fraction) && auto_noise_fraction >= 0.0 && auto_noise_fraction <= 1.0,
+          "auto_noise_fraction", auto_noise_fraction, "in [0, 1]");
   // the models' own checks, with the node's parameter names in front
   try
   {

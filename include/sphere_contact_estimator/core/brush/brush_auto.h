@@ -1,6 +1,7 @@
 #pragma once
 
 // STL
+#include <cmath>
 #include <memory>
 
 // Package
@@ -45,6 +46,12 @@ public:
   /// Turns its transient state and the force history with the frame (entering the transient later from a
   /// steady state needs no turning: that state is built in the new frame).
   void rotateFrame(double alpha) override;
+  /// Below the noise: with BrushParameters::auto_noise_fraction f > 0, the target of the next update is
+  /// max(accuracy_target, f spread), spread the forces' standard deviation from uncertain inputs (a fraction of
+  /// mu F_z). The flag kAccuracyNotMet then compares the estimate with that target.
+  void setInputSpread(double spread) override { input_spread_ = std::isfinite(spread) && spread > 0.0 ? spread : 0.0; }
+  /// The target the last update met: accuracy_target, or above it below the noise.
+  double lastTarget() const { return target_; }
   BrushModelKind kind() const override { return BrushModelKind::Auto; }
 
   /// The model that produced the last update, and its resolution (0 for linear and steady).
@@ -82,6 +89,7 @@ private:
   void stepLag(const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame, double target,
                bool steady_exists, double travel);
   void enterTransient();
+  double effectiveTarget() const;
 
   BrushLinear linear_;
   BrushSteady steady_;
@@ -108,6 +116,8 @@ private:
   Slips last_slips_;  // of the last update, for visitBristles
   int last_resolution_ = 0;
   double cost_ = 0.0;
+  double input_spread_ = 0.0;  // setInputSpread
+  double target_ = 0.0;        // of the last update
 };
 
 }  // namespace sphere_contact_estimator

@@ -47,6 +47,10 @@ public:
   /// turn coupling does not carry (the rolling direction re-initialised after standstill or a reversal):
   /// state that lives in the frame is re-expressed in the new axes. Stateless models have nothing to turn.
   virtual void rotateFrame(double /*alpha*/) {}
+  /// How uncertain the next update's inputs make the forces: the largest standard deviation of F_x, F_y and M_z / a
+  /// as a fraction of mu F_z (EstimateCovariance::brush_spread; 0 when unknown). Only auto uses it, to spend no effort
+  /// below the noise (BrushParameters::auto_noise_fraction).
+  virtual void setInputSpread(double /*spread*/) {}
   virtual BrushModelKind kind() const = 0;
 
   /// New parameters in place, keeping the state where it still means something. False when this model

@@ -30,9 +30,12 @@ struct BrushParameters
   int resolution = 32;    ///< transient: lattice spacings across 2a (the steady model follows accuracy_target)
   double standstill_speed = 1.0e-3;  ///< V_r below which the slip form is not used [m/s]
   double accuracy_target = 0.01;     ///< BrushSteady: its error bound; BrushAuto: largest error; of mu F_z
+  /// BrushAuto below the noise: when the inputs are uncertain (BrushModel::setInputSpread), its target rises to this
+  /// fraction of the forces' standard deviation where that is larger (0: never) [-]
+  double auto_noise_fraction = 0.0;
 
   /// Throws std::invalid_argument naming the first bad value: a, k > 0; F_z, mu >= 0; all finite;
-  /// 2 <= resolution <= 1024; standstill_speed > 0; 0 < accuracy_target <= 1.
+  /// 2 <= resolution <= 1024; standstill_speed > 0; 0 < accuracy_target <= 1; 0 <= auto_noise_fraction <= 1.
   void validate() const;
 
   /// Pressure q_z [N/m^2] at squared distance r2 [m^2] from the patch centre; 0 outside the patch.

@@ -10,8 +10,10 @@
 
 // Package
 #include "sphere_contact_estimator/core/brush/brush_model.h"
-#include "sphere_contact_estimator/core/rolling_resistance/cylinder_model.h"
+#include "sphere_contact_estimator/core/estimator/estimate_covariance.h"
 #include "sphere_contact_estimator/core/estimator/estimator_settings.h"
+#include "sphere_contact_estimator/core/estimator/twist_covariance.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_model.h"
 
 namespace sphere_contact_estimator
 {
@@ -22,6 +24,10 @@ struct EstimatorInput
   double stamp = 0.0;                                     ///< message time [s]
   Eigen::Vector3d omega = Eigen::Vector3d::Zero();        ///< angular velocity of the sphere [rad/s]
   Eigen::Vector3d v_contact = Eigen::Vector3d::Zero();    ///< velocity of the contact-patch centre [m/s]
+  /// The covariance of (v_contact, omega) in the same frame (rows linear x, y, z, angular x, y, z), and what the
+  /// odometry's own check of it found (checkTwistCovariance; only an Ok one is used). Zero: exact inputs.
+  TwistCovariance twist_covariance = TwistCovariance::Zero();
+  CovarianceStatus twist_covariance_status = CovarianceStatus::Ok;
 };
 
 /// Bit flags of one estimate, beside the models' own (brush_flags, cylinder_flags).
@@ -69,6 +75,8 @@ struct ContactEstimateData
   CylinderState rolling_resistance;  ///< per unit length, as CylinderModel::solve returns it
   double rolling_resistance_force = 0.0;   ///< F_R L [N], against the rolling direction
   double rolling_resistance_torque = 0.0;  ///< R F_R L [N m]
+  /// How uncertain the outputs are because the odometry is (its twist covariance carried through the models).
+  EstimateCovariance covariance;
 
   std::uint32_t flags = 0;    ///< estimate_flags
   double compute_time = 0.0;  ///< wall time of update() [s]
@@ -83,7 +91,10 @@ struct ContactEstimateData
 /// Per message: V_r = R_r (omega_y, -omega_x) in the ground frame (docs/conventions.md); the contact frame's x
 /// follows V_r (held at standstill); psi_dot is the low-passed rate of that heading (or (1 - chi_gamma)
 /// omega_z); vectors are rotated into the contact frame, converted to the paper frame (x, -y, -z), fed to
-/// the models, and the results converted back.
+/// the models, and the results converted back. The twist's covariance goes the same way (EstimateCovariance): the
+/// exact Jacobian of the kinematics to the slips, then the brush model's own propagation (force_covariance.h) and
+/// the cylinder's (cylinder_spread.h); the brush forces' spread is passed to the brush model first, so that auto
+/// spends no effort below the noise.
 class ContactEstimator
 {
 public:
@@ -127,6 +138,8 @@ private:
   ContactKinematics contactKinematics(const EstimatorInput& in, double psi_dot, ContactEstimateData& out) const;
   void runBrush(const ContactKinematics& kin, double dt, double omega_z, ContactEstimateData& out);
   void runRollingResistance(double speed, ContactEstimateData& out) const;
+  void propagateBrushCovariance(const EstimatorInput& in, double speed, ContactEstimateData& out) const;
+  void propagateRollingResistanceCovariance(double speed, ContactEstimateData& out) const;
   bool slipsRepresentable(const EstimatorInput& in, const Eigen::Vector2d& V_r, double speed) const;
   void rebuildBrush(const EstimatorSettings& next);
   void rebuildCylinder(const EstimatorSettings& next);

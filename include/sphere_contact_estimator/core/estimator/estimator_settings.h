@@ -51,6 +51,10 @@ struct EstimatorSettings
   double surface_density = 10.0;   ///< m [kg/m^2]
   double mass_per_length = 0.0;    ///< M [kg/m]; 0: load / (gravity L)
   double effective_length = 0.1;   ///< L [m]
+  // uncertainty (issue 13)
+  bool propagate_covariance = true;  ///< carry the odometry's twist covariance to the outputs
+  double auto_noise_fraction = 0.25; ///< auto's target rises to this fraction of the forces' propagated standard
+                                     ///< deviation where that is larger (0: never) [-]
 
   /// F_z [N].
   double verticalLoad() const { return load > 0.0 ? load : robot_mass * gravity; }

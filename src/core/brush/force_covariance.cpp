@@ -1,0 +1,145 @@
+#include "sphere_contact_estimator/core/brush/force_covariance.h"
+
+// STL
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+// Package
+#include "sphere_contact_estimator/core/brush/brush_linear.h"
+#include "sphere_contact_estimator/core/brush/brush_steady.h"
+#include "sphere_contact_estimator/core/numerics/unscented_transform.h"
+
+namespace sphere_contact_estimator
+{
+namespace
+{
+Eigen::Matrix2d rotation(double angle)
+{
+  const double c = std::cos(angle), s = std::sin(angle);
+  return (Eigen::Matrix2d() << c, -s, s, c).finished();
+}
+
+// d(F_x, F_y, M_z) / d(sigma_x, sigma_y, phi, psi) of the linear model at psi = 0: eqs. 61-62 (and the spin term of
+// M_z), with the scaling onto the friction circle past mu F_z, where F_t' = s F_t and M_z' = s M_z with
+// s = mu F_z / |F_t|, so that dF_t' = s (I - n n^T) dF_t and dM_z' = s (dM_z - M_z n^T dF_t / |F_t|), n = F_t / |F_t|;
+// and the turn psi of the rolling direction: F(psi) = R(psi) F_r(R(-psi) sigma), dF/dpsi = G F_r - dF_r/dsigma G sigma
+// with G the quarter turn (dM_z/dpsi = -dM_z/dsigma G sigma).
+Eigen::Matrix<double, 3, 4> linearJacobian(const BrushLinear& model, const Eigen::Vector2d& sigma, double phi)
+{
+  Eigen::Matrix3d A;
+  A << model.C_sigma(), 0.0, 0.0,  //
+      0.0, model.C_sigma(), model.C_phi(),  //
+      0.0, -model.C_Msigma_y(), model.C_Mphi();
+  Eigen::Vector2d F = model.C_sigma() * sigma + Eigen::Vector2d(0.0, model.C_phi() * phi);
+  double M = -model.C_Msigma_y() * sigma.y() + model.C_Mphi() * phi;
+  const BrushParameters& p = model.parameters();
+  const double limit = p.mu * p.F_z, norm = F.norm();
+  Eigen::Matrix3d J = A;
+  if (norm > limit && norm > 0.0)
+  {
+    const double s = limit / norm;
+    const Eigen::Vector2d n = F / norm;
+    J.topRows<2>() = s * (Eigen::Matrix2d::Identity() - n * n.transpose()) * A.topRows<2>();
+    J.row(2) = s * (A.row(2) - M / norm * n.transpose() * A.topRows<2>());
+    F *= s;
+    M *= s;
+  }
+  const Eigen::Matrix2d G = (Eigen::Matrix2d() << 0.0, -1.0, 1.0, 0.0).finished();
+  Eigen::Matrix<double, 3, 4> out;
+  out.leftCols<3>() = J;
+  const Eigen::Vector2d turned = G * sigma;
+  out.col(3).head<2>() = G * F - J.topLeftCorner<2, 2>() * turned;
+  out(2, 3) = -J.block<1, 2>(2, 0).dot(turned);
+  return out;
+}
+
+template <int N>
+ForceCovariance propagate(BrushModelKind kind, const BrushParameters& p, const Eigen::Vector2d& sigma, double phi,
+                          double chi_gamma, const Eigen::Matrix<double, N, N>& Sigma)
+{
+  if (const char* problem = covarianceProblem<N>(Sigma))
+    throw std::invalid_argument(std::string("slip covariance: ") + problem);
+  ForceCovariance out;
+  out.defined = true;
+  if (Sigma.isZero(0.0))
+  {
+    out.method = CovarianceMethod::Zero;
+    return out;
+  }
+  const BrushLinear linear(p);
+  const Eigen::Matrix<double, 3, N> J = linearJacobian(linear, sigma, phi).template leftCols<N>();
+  if (kind == BrushModelKind::Linear)
+  {
+    out.method = CovarianceMethod::Jacobian;
+    out.covariance = J * Sigma * J.transpose();
+    return out;
+  }
+  // The steady model at the sigma points, each to a fiftieth of the spread (its errors add to the spread in
+  // quadrature: 0.02 of it at most): first of the linear model's spread, then, where saturation made the spread far
+  // smaller, again of the spread the first pass found.
+  const BrushSteady steady(p);
+  bool exists = true;
+  Eigen::Matrix<double, N, 1> mean = Eigen::Matrix<double, N, 1>::Zero();
+  mean.template head<3>() << sigma.x(), sigma.y(), phi;
+  const auto transform = [&](double tolerance) {
+    return unscentedTransform<N, 3>(
+        mean, Sigma,
+        [&](const Eigen::Matrix<double, N, 1>& x) {
+          const double psi = N > 3 ? x(N - 1) : 0.0;
+          const Eigen::Vector2d s = rotation(-psi) * Eigen::Vector2d(x(0), x(1));
+          const BrushForces f = steady.evaluate(s, x(2), chi_gamma * x(2), (1.0 - chi_gamma) * x(2), tolerance);
+          exists = exists && !(f.flags & brush_flags::kNoSteadyStateTilt);
+          const Eigen::Vector2d F = rotation(psi) * Eigen::Vector2d(f.F_x, f.F_y);
+          return Eigen::Vector3d(F.x(), F.y(), f.M_z);
+        },
+        0.0);
+  };
+  ForceCovariance guess;
+  guess.covariance = J * Sigma * J.transpose();
+  const auto tolerance = [](double spread) { return std::clamp(0.02 * spread, 1e-7, 1e-2); };
+  const double first = tolerance(guess.spread(p));
+  Unscented<N, 3> u = transform(first);
+  out.evaluations = u.evaluations;
+  out.covariance = u.covariance;
+  const double second = tolerance(out.spread(p));
+  if (first > 2.0 * second)
+  {
+    u = transform(second);
+    out.evaluations += u.evaluations;
+    out.covariance = u.covariance;
+  }
+  out.method = CovarianceMethod::Unscented;
+  if (!exists)
+  {
+    out.covariance.setZero();
+    out.method = CovarianceMethod::None;
+    out.defined = false;
+  }
+  return out;
+}
+}  // namespace
+
+double ForceCovariance::spread(const BrushParameters& p) const
+{
+  const double limit = p.mu * p.F_z;
+  if (!(limit > 0.0))
+    return 0.0;
+  const Eigen::Vector3d d = covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
+  return std::max({ d.x(), d.y(), d.z() / p.a }) / limit;
+}
+
+ForceCovariance propagateSlipCovariance(BrushModelKind kind, const BrushParameters& p, const Eigen::Vector2d& sigma,
+                                        double phi, double chi_gamma, const Eigen::Matrix3d& Sigma)
+{
+  return propagate<3>(kind, p, sigma, phi, chi_gamma, Sigma);
+}
+
+ForceCovariance propagateSlipCovariance(BrushModelKind kind, const BrushParameters& p, const Eigen::Vector2d& sigma,
+                                        double phi, double chi_gamma, const Eigen::Matrix4d& Sigma)
+{
+  return propagate<4>(kind, p, sigma, phi, chi_gamma, Sigma);
+}
+
+}  // namespace sphere_contact_estimator
