@@ -1,0 +1,499 @@
+// Uncertainty (issue 13): the unscented transform and the covariance checks; the brush forces' covariance from the
+// slips' (the linear model's J Sigma J^T to rounding, the steady model's unscented transform against Monte Carlo);
+// the cylinder's spread in the speed; the twist covariance through the estimator against Monte Carlo in the twist,
+// with every kind of bad covariance; auto below the noise.
+
+// STL
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <random>
+#include <vector>
+
+// Eigen
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+// GTest
+#include <gtest/gtest.h>
+
+// Package
+#include "brush_test_support.h"
+#include "sphere_contact_estimator/core/brush/brush_auto.h"
+#include "sphere_contact_estimator/core/brush/brush_linear.h"
+#include "sphere_contact_estimator/core/brush/brush_steady.h"
+#include "sphere_contact_estimator/core/brush/brush_transient.h"
+#include "sphere_contact_estimator/core/brush/force_covariance.h"
+#include "sphere_contact_estimator/core/estimator/contact_estimator.h"
+#include "sphere_contact_estimator/core/numerics/covariance.h"
+#include "sphere_contact_estimator/core/numerics/unscented_transform.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_exact.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_spread.h"
+
+namespace sphere_contact_estimator
+{
+namespace
+{
+// The sample covariance of f(x) for x ~ N(mean, P), n draws from rng.
+template <int N, int M>
+Eigen::Matrix<double, M, M> monteCarlo(const Eigen::Matrix<double, N, 1>& mean, const Eigen::Matrix<double, N, N>& P,
+                                       const std::function<Eigen::Matrix<double, M, 1>(const Eigen::Matrix<double, N, 1>&)>& f,
+                                       int n, std::mt19937_64& rng)
+{
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eig(P);
+  const Eigen::Matrix<double, N, N> root =
+      eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::vector<Eigen::Matrix<double, M, 1>> y;
+  Eigen::Matrix<double, M, 1> sum = Eigen::Matrix<double, M, 1>::Zero();
+  for (int i = 0; i < n; ++i)
+  {
+    Eigen::Matrix<double, N, 1> z;
+    for (int k = 0; k < N; ++k)
+      z(k) = g(rng);
+    y.push_back(f(mean + root * z));
+    sum += y.back();
+  }
+  const Eigen::Matrix<double, M, 1> m = sum / n;
+  Eigen::Matrix<double, M, M> C = Eigen::Matrix<double, M, M>::Zero();
+  for (const auto& v : y)
+    C += (v - m) * (v - m).transpose();
+  return C / (n - 1);
+}
+
+// Standard deviations within `sd_tolerance` (relative) and correlations within `corr_tolerance` where the
+// reference's standard deviation is above `floor` (the scale of each output).
+template <int M>
+void expectClose(const Eigen::Matrix<double, M, M>& got, const Eigen::Matrix<double, M, M>& ref,
+                 const Eigen::Matrix<double, M, 1>& floor, double sd_tolerance, double corr_tolerance,
+                 const std::string& where)
+{
+  const Eigen::Matrix<double, M, 1> a = got.diagonal().cwiseMax(0.0).cwiseSqrt(), b = ref.diagonal().cwiseSqrt();
+  for (int i = 0; i < M; ++i)
+  {
+    if (!(b(i) > floor(i)))
+      continue;
+    EXPECT_NEAR(a(i) / b(i), 1.0, sd_tolerance) << where << ": sd of output " << i;
+    for (int j = i + 1; j < M; ++j)
+      if (b(j) > floor(j) && a(i) > 0.0 && a(j) > 0.0)
+        EXPECT_NEAR(got(i, j) / (a(i) * a(j)), ref(i, j) / (b(i) * b(j)), corr_tolerance)
+            << where << ": correlation " << i << "-" << j;
+  }
+}
+
+TEST(UnscentedTransform, ExactForLinearMapsAndTheMeanOfQuadraticOnes)
+{
+  Eigen::Matrix3d L;
+  L << 1.0, 0.0, 0.0, 0.3, 2.0, 0.0, -0.5, 0.1, 0.7;
+  const Eigen::Matrix3d P = L * L.transpose();
+  const Eigen::Vector3d m(0.2, -1.0, 3.0);
+  Eigen::Matrix<double, 2, 3> A;
+  A << 1.0, -2.0, 0.5, 0.0, 3.0, 1.0;
+  const auto linear = unscentedTransform<3, 2>(m, P, [&](const Eigen::Vector3d& x) { return Eigen::Vector2d(A * x); });
+  EXPECT_LT((linear.mean - A * m).norm(), 1e-12);
+  EXPECT_LT((linear.covariance - A * P * A.transpose()).norm(), 1e-11);
+  EXPECT_EQ(linear.evaluations, 6);  // kappa = 0: the mean is not evaluated
+  // E[x^T x] = m^T m + tr P
+  const auto quadratic = unscentedTransform<3, 1>(
+      m, P, [](const Eigen::Vector3d& x) { return Eigen::Matrix<double, 1, 1>(x.squaredNorm()); });
+  EXPECT_NEAR(quadratic.mean(0), m.squaredNorm() + P.trace(), 1e-11);
+}
+
+TEST(UnscentedTransform, SemiDefiniteAndZeroCovariances)
+{
+  // a variable known exactly and a perfectly correlated pair: sigma points only along the spread, f at the mean
+  // once for the rest
+  Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+  P(0, 0) = P(1, 1) = P(0, 1) = P(1, 0) = 4.0;
+  int calls = 0;
+  const auto u = unscentedTransform<3, 1>(Eigen::Vector3d::Zero(), P, [&](const Eigen::Vector3d& x) {
+    ++calls;
+    return Eigen::Matrix<double, 1, 1>(x(0) + x(1) + 10.0 * x(2));
+  });
+  EXPECT_EQ(calls, u.evaluations);
+  EXPECT_EQ(u.evaluations, 3);
+  EXPECT_NEAR(u.covariance(0, 0), 16.0, 1e-12);  // var(x0 + x1) = 4 + 4 + 2 * 4
+  const auto zero = unscentedTransform<3, 1>(Eigen::Vector3d(1.0, 2.0, 3.0), Eigen::Matrix3d::Zero(),
+                                             [](const Eigen::Vector3d& x) { return Eigen::Matrix<double, 1, 1>(x.sum()); });
+  EXPECT_EQ(zero.covariance(0, 0), 0.0);
+  EXPECT_EQ(zero.mean(0), 6.0);
+}
+
+TEST(CovarianceCheck, NamesWhatIsWrong)
+{
+  Eigen::Matrix2d P;
+  P << 1.0, 0.5, 0.5, 1.0;
+  EXPECT_EQ(covarianceProblem<2>(P), nullptr);
+  EXPECT_EQ(covarianceProblem<2>(Eigen::Matrix2d::Zero()), nullptr);
+  Eigen::Matrix2d bad = P;
+  bad(0, 1) = NAN;
+  EXPECT_STREQ(covarianceProblem<2>(bad), "not finite");
+  bad = P;
+  bad(0, 1) = 0.7;
+  EXPECT_STREQ(covarianceProblem<2>(bad), "not symmetric");
+  bad = P;
+  bad(1, 1) = -1.0;
+  EXPECT_STREQ(covarianceProblem<2>(bad), "a negative variance");
+  bad << 1.0, 2.0, 2.0, 1.0;  // a correlation of 2
+  EXPECT_NE(covarianceProblem<2>(bad), nullptr);
+}
+
+TEST(ForceCovariance, LinearModelIsJSigmaJTransposed)
+{
+  // eqs. 61-62 (and the spin term of M_z) written out here: the covariance is exactly J Sigma J^T
+  const BrushParameters p = test::figure4Parameters();
+  const double a = p.a, k = p.k;
+  const double C_sigma = 8.0 / 3.0 * k * a * a * a, C_phi = 3.0 * M_PI * a / 32.0 * C_sigma;
+  const double C_Mphi = 8.0 / 15.0 * k * a * a * a * a * a;
+  Eigen::Matrix3d J;
+  J << C_sigma, 0.0, 0.0, 0.0, C_sigma, C_phi, 0.0, -C_phi, C_Mphi;
+  Eigen::Matrix3d S;
+  S << 1e-6, 2e-7, 1e-6, 2e-7, 4e-6, -3e-6, 1e-6, -3e-6, 1e-2;
+  const ForceCovariance c = propagateSlipCovariance(BrushModelKind::Linear, p, { 0.01, -0.005 }, 0.5, 1.0, S);
+  EXPECT_EQ(c.method, CovarianceMethod::Jacobian);
+  const Eigen::Matrix3d ref = J * S * J.transpose();
+  EXPECT_LT((c.covariance - ref).cwiseAbs().maxCoeff(), 1e-12 * ref.cwiseAbs().maxCoeff());
+  // past mu F_z (scaled back onto the friction circle) against central differences of the model itself
+  const BrushLinear model(p);
+  const Eigen::Vector2d sigma(0.3, 0.1);
+  const double phi = 2.0;
+  const auto f = [&](const Eigen::Vector3d& x) {
+    const BrushForces g = model.evaluate({ x(0), x(1) }, x(2));
+    return Eigen::Vector3d(g.F_x, g.F_y, g.M_z);
+  };
+  Eigen::Matrix3d D;
+  for (int i = 0; i < 3; ++i)
+  {
+    Eigen::Vector3d h = Eigen::Vector3d::Zero();
+    h(i) = 1e-7 * (i == 2 ? 10.0 : 1.0);
+    const Eigen::Vector3d x(sigma.x(), sigma.y(), phi);
+    D.col(i) = (f(x + h) - f(x - h)) / (2.0 * h(i));
+  }
+  const ForceCovariance saturated = propagateSlipCovariance(BrushModelKind::Linear, p, sigma, phi, 1.0, S);
+  const Eigen::Matrix3d expected = D * S * D.transpose();
+  EXPECT_LT((saturated.covariance - expected).cwiseAbs().maxCoeff(), 1e-5 * expected.cwiseAbs().maxCoeff());
+}
+
+TEST(ForceCovariance, ZeroGivesExactlyZeroAndBadCovariancesAreRefused)
+{
+  const BrushParameters p = test::figure4Parameters();
+  for (BrushModelKind kind : { BrushModelKind::Linear, BrushModelKind::Steady })
+  {
+    const ForceCovariance c = propagateSlipCovariance(kind, p, { 0.05, 0.02 }, 3.33, 1.0, Eigen::Matrix3d(Eigen::Matrix3d::Zero()));
+    EXPECT_EQ(c.method, CovarianceMethod::Zero);
+    EXPECT_TRUE(c.covariance.isZero(0.0));
+    EXPECT_EQ(c.evaluations, 0);
+  }
+  Eigen::Matrix3d bad = Eigen::Matrix3d::Identity() * 1e-6;
+  bad(1, 1) = -1e-6;
+  EXPECT_THROW(propagateSlipCovariance(BrushModelKind::Steady, p, { 0.05, 0.02 }, 3.33, 1.0, bad), std::invalid_argument);
+  bad(1, 1) = NAN;
+  EXPECT_THROW(propagateSlipCovariance(BrushModelKind::Steady, p, { 0.05, 0.02 }, 3.33, 1.0, bad), std::invalid_argument);
+}
+
+TEST(ForceCovariance, SteadyModelAgainstMonteCarlo)
+{
+  // Seeded random operating points over the envelope, from adhesion to full sliding with spin, tilt and not, the
+  // three pressures; the slips spread by 5 % of their size with a random correlation (a spread that keeps the model
+  // smooth). 10^4 draws of the steady model each: standard deviations within 10 %, correlations within 0.1.
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int checked = 0;
+  double worst_sd = 0.0;
+  for (int i = 0; i < 6; ++i)
+  {
+    const BrushParameters p = test::drawEnvelopeParameters(rng, i);
+    const double scale = std::pow(10.0, -2.0 * u(rng));
+    const Eigen::Vector2d sigma = scale * Eigen::Vector2d(0.3 * (2.0 * u(rng) - 1.0), 0.1 * (2.0 * u(rng) - 1.0));
+    const double phi = scale * (2.0 * u(rng) - 1.0) / p.a, chi = 0.3 + 0.6 * u(rng);
+    const Eigen::Vector3d sd(0.05 * std::abs(sigma.x()) + 1e-5, 0.05 * std::abs(sigma.y()) + 1e-5,
+                             0.05 * std::abs(phi) + 1e-5 / p.a);
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+    R(0, 1) = R(1, 0) = 0.6 * (2.0 * u(rng) - 1.0);
+    R(1, 2) = R(2, 1) = 0.3 * (2.0 * u(rng) - 1.0);
+    const Eigen::Matrix3d S = sd.asDiagonal() * R * sd.asDiagonal();
+    const ForceCovariance c = propagateSlipCovariance(BrushModelKind::Steady, p, sigma, phi, chi, S);
+    ASSERT_TRUE(c.defined);
+    EXPECT_EQ(c.method, CovarianceMethod::Unscented);
+    EXPECT_LE(c.evaluations, 12);
+    const BrushSteady steady(p);
+    const double tolerance = std::max(1e-7, 0.005 * c.spread(p));
+    const Eigen::Matrix3d mc = monteCarlo<3, 3>(
+        Eigen::Vector3d(sigma.x(), sigma.y(), phi), S,
+        [&](const Eigen::Vector3d& x) {
+          const BrushForces f = steady.evaluate({ x(0), x(1) }, x(2), chi * x(2), (1.0 - chi) * x(2), tolerance);
+          return Eigen::Vector3d(f.F_x, f.F_y, f.M_z);
+        },
+        10000, rng);
+    const double limit = p.mu * p.F_z;
+    const BrushForces nominal = steady.evaluate(sigma, phi, chi * phi, (1.0 - chi) * phi, 1e-4);
+    const std::string where = "point " + std::to_string(i) + " (sliding " + std::to_string(nominal.sliding_fraction) +
+                              ", tilt " + std::to_string(p.tilt) + ")";
+    expectClose<3>(c.covariance, mc, Eigen::Vector3d(1e-5 * limit, 1e-5 * limit, 1e-5 * limit * p.a), 0.10, 0.1, where);
+    for (int k = 0; k < 3; ++k)
+      if (mc(k, k) > 0.0)
+        worst_sd = std::max(worst_sd, std::abs(std::sqrt(c.covariance(k, k) / mc(k, k)) - 1.0));
+    ++checked;
+  }
+  RecordProperty("worst_sd_relative_error", std::to_string(worst_sd));
+  EXPECT_EQ(checked, 6);
+}
+
+TEST(CylinderSpread, AgainstMonteCarloBelowAtAndPastTheCriticalSpeeds)
+{
+  // The paper's rubber: below, at and past v*, and past v_c (point contact): F_R and mu_roll's sd within 10 %.
+  CylinderParameters c;
+  c.g = 10.0;
+  const CylinderExact model(c);
+  const double v_star = *model.scales().v_star, v_c = model.scales().v_critical;
+  std::mt19937_64 rng(41);
+  for (double v : { 0.3 * v_star, v_star, 3.0 * v_star, 2.0 * v_c })
+  {
+    const double sd = 0.05 * v;
+    const CylinderSpread s = cylinderSpread(model, v, sd);
+    EXPECT_EQ(s.method, CovarianceMethod::Unscented);
+    const Eigen::Matrix2d mc = monteCarlo<1, 2>(
+        Eigen::Matrix<double, 1, 1>(v), Eigen::Matrix<double, 1, 1>(sd * sd),
+        [&](const Eigen::Matrix<double, 1, 1>& x) {
+          const CylinderState st = model.solve(std::abs(x(0)));
+          return Eigen::Vector2d(st.F_R, st.mu_roll);
+        },
+        10000, rng);
+    EXPECT_NEAR(std::sqrt(s.F_R_variance / mc(0, 0)), 1.0, 0.1) << "v = " << v;
+    EXPECT_NEAR(std::sqrt(s.mu_roll_variance / mc(1, 1)), 1.0, 0.1) << "v = " << v;
+  }
+  EXPECT_EQ(cylinderSpread(model, v_star, 0.0).F_R_variance, 0.0);
+  EXPECT_THROW(cylinderSpread(model, v_star, -1.0), std::invalid_argument);
+  EXPECT_THROW(cylinderSpread(model, v_star, NAN), std::invalid_argument);
+}
+
+TEST(TwistCovariance, EveryKindOfBadCovariance)
+{
+  TwistCovariance C = TwistCovariance::Identity() * 1e-4;
+  EXPECT_EQ(checkTwistCovariance(C), CovarianceStatus::Ok);
+  EXPECT_EQ(checkTwistCovariance(TwistCovariance::Zero()), CovarianceStatus::Ok);
+  TwistCovariance z = C;
+  z(2, 2) = -1.0;  // linear z is never used: anything goes there
+  z(2, 0) = z(0, 2) = NAN;
+  EXPECT_EQ(checkTwistCovariance(z), CovarianceStatus::Ok);
+  const char* why = nullptr;
+  TwistCovariance unknown = C;
+  unknown(5, 5) = -1.0;  // the ROS convention for "no estimate"
+  EXPECT_EQ(checkTwistCovariance(unknown, &why), CovarianceStatus::Unknown);
+  EXPECT_NE(why, nullptr);
+  TwistCovariance negative = C;
+  negative(3, 3) = -0.5;
+  EXPECT_EQ(checkTwistCovariance(negative, &why), CovarianceStatus::Invalid);
+  EXPECT_STREQ(why, "a negative variance");
+  TwistCovariance nan = C;
+  nan(0, 1) = nan(1, 0) = NAN;
+  EXPECT_EQ(checkTwistCovariance(nan), CovarianceStatus::Invalid);
+  TwistCovariance asymmetric = C;
+  asymmetric(0, 1) = 1e-5;
+  EXPECT_EQ(checkTwistCovariance(asymmetric), CovarianceStatus::Invalid);
+  TwistCovariance indefinite = C;
+  indefinite(3, 4) = indefinite(4, 3) = 5e-4;  // a correlation of 5
+  EXPECT_EQ(checkTwistCovariance(indefinite), CovarianceStatus::Invalid);
+}
+
+// --- the estimator: the twist's covariance to the outputs ---
+
+EstimatorSettings steadySettings(BrushModelKind kind)
+{
+  EstimatorSettings s;
+  s.brush_model = kind;
+  s.accuracy_target = 1e-4;
+  s.rolling_resistance_model = CylinderModelKind::Exact;
+  return s;
+}
+
+EstimatorInput rolling(double speed, double slip_x, double slip_y, double yaw_rate, double heading)
+{
+  // the robot rolling at `speed` along `heading` in the ground frame (ROS axes), sliding by slip * speed
+  const double c = std::cos(heading), s = std::sin(heading), R = EstimatorSettings{}.rolling_radius;
+  EstimatorInput in;
+  in.stamp = 1.0;
+  const Eigen::Vector2d V_r(speed * c, speed * s);
+  in.omega = Eigen::Vector3d(-V_r.y() / R, V_r.x() / R, yaw_rate);  // V_r = R (omega_y, -omega_x)
+  const Eigen::Vector2d V_s = speed * (slip_x * Eigen::Vector2d(c, s) + slip_y * Eigen::Vector2d(-s, c));
+  in.v_contact = Eigen::Vector3d(V_r.x() - V_s.x(), V_r.y() - V_s.y(), 0.0);  // sigma = -V_s / V_r
+  return in;
+}
+
+// The estimator's brush forces (ROS contact frame, turned back to the heading of `reference`) and F_R L for one
+// message, from a fresh estimator: a stateless map for the Monte Carlo draws.
+Eigen::Vector4d outputs(const EstimatorSettings& settings, const EstimatorInput& in, double heading)
+{
+  ContactEstimator e(settings);
+  const ContactEstimateData* d = e.update(in);
+  const double t = d->heading - heading;
+  const Eigen::Vector2d F(std::cos(t) * d->brush.F_x - std::sin(t) * d->brush.F_y,
+                          std::sin(t) * d->brush.F_x + std::cos(t) * d->brush.F_y);
+  return { F.x(), F.y(), d->brush.M_z, d->rolling_resistance_force };
+}
+
+TEST(EstimateCovariance, TwistCovarianceAgainstMonteCarlo)
+{
+  // Rolling at 1 m/s along a heading of 0.7 rad with slip and yaw in adhesion, partial and full sliding, the twist
+  // noisy by a few per cent with correlations: the brush forces' covariance (steady model; the linear model's) and
+  // F_R's variance against 10^4 draws of the twist through fresh estimators.
+  std::mt19937_64 rng(53);
+  const double heading = 0.7;
+  for (const auto& [slip_x, slip_y, yaw, kind] :
+       { std::tuple{ 0.002, 0.001, 0.05, BrushModelKind::Linear }, { 0.002, 0.001, 0.05, BrushModelKind::Steady },
+         { 0.02, -0.01, 0.5, BrushModelKind::Steady }, { 0.3, 0.1, 2.0, BrushModelKind::Steady } })
+  {
+    const EstimatorSettings settings = steadySettings(kind);
+    EstimatorInput in = rolling(1.0, slip_x, slip_y, yaw, heading);
+    Eigen::Matrix<double, 6, 1> sd;
+    sd << 0.002, 0.002, 0.0, 0.005, 0.005, 0.01;  // [m/s], [rad/s]
+    TwistCovariance R = TwistCovariance::Identity();
+    R(0, 4) = R(4, 0) = 0.5;  // the contact centre's and the sphere's velocities from the same wheel encoders
+    R(1, 3) = R(3, 1) = -0.5;
+    in.twist_covariance = sd.asDiagonal() * R * sd.asDiagonal();
+    ContactEstimator estimator(settings);
+    const ContactEstimateData* d = estimator.update(in);
+    ASSERT_NE(d, nullptr);
+    ASSERT_EQ(d->covariance.status, CovarianceStatus::Ok);
+    EXPECT_EQ(d->covariance.brush_method,
+              kind == BrushModelKind::Linear ? CovarianceMethod::Jacobian : CovarianceMethod::Unscented);
+    // the draws over the twist's five used components (V_Cx, V_Cy, omega_x, omega_y, omega_z)
+    Eigen::Matrix<double, 5, 1> mean;
+    mean << in.v_contact.x(), in.v_contact.y(), in.omega.x(), in.omega.y(), in.omega.z();
+    const Eigen::Matrix<double, 5, 5> S = usedTwistCovariance(in.twist_covariance);
+    const Eigen::Matrix4d mc = monteCarlo<5, 4>(
+        mean, S,
+        [&](const Eigen::Matrix<double, 5, 1>& x) {
+          EstimatorInput draw = in;
+          draw.v_contact = Eigen::Vector3d(x(0), x(1), 0.0);
+          draw.omega = Eigen::Vector3d(x(2), x(3), x(4));
+          draw.twist_covariance.setZero();
+          return outputs(settings, draw, d->heading);
+        },
+        10000, rng);
+    // the brush forces' covariance and F_R's variance (their cross terms are not published)
+    const double limit = settings.friction * settings.verticalLoad();
+    const std::string where = "slip (" + std::to_string(slip_x) + ", " + std::to_string(slip_y) + ") " + toString(kind);
+    expectClose<3>(d->covariance.brush, Eigen::Matrix3d(mc.topLeftCorner<3, 3>()),
+                   Eigen::Vector3d(1e-4 * limit, 1e-4 * limit, 1e-4 * limit * 0.01), 0.10, 0.1, where);
+    EXPECT_NEAR(std::sqrt(d->covariance.rolling_resistance_force_variance / mc(3, 3)), 1.0, 0.1) << where;
+  }
+}
+
+TEST(EstimateCovariance, HostileCovariancesAndStandstill)
+{
+  const EstimatorSettings settings = steadySettings(BrushModelKind::Steady);
+  const auto run = [&](const TwistCovariance& C, CovarianceStatus status, double speed = 1.0) {
+    ContactEstimator e(settings);
+    EstimatorInput in = rolling(speed, 0.01, 0.0, 0.1, 0.0);
+    in.twist_covariance = C;
+    in.twist_covariance_status = status;
+    return *e.update(in);
+  };
+  // exact odometry: exactly zero
+  const ContactEstimateData zero = run(TwistCovariance::Zero(), CovarianceStatus::Ok);
+  EXPECT_EQ(zero.covariance.status, CovarianceStatus::Ok);
+  EXPECT_EQ(zero.covariance.brush_method, CovarianceMethod::Zero);
+  EXPECT_TRUE(zero.covariance.brush.isZero(0.0));
+  EXPECT_EQ(zero.covariance.rolling_resistance_force_variance, 0.0);
+  // refused where it entered (the ROS layer checks the message): nothing carried, said so
+  for (CovarianceStatus s : { CovarianceStatus::Unknown, CovarianceStatus::Invalid })
+  {
+    const ContactEstimateData d = run(TwistCovariance::Identity() * 1e-4, s);
+    EXPECT_EQ(d.covariance.status, s);
+    EXPECT_EQ(d.covariance.brush_method, CovarianceMethod::None);
+    EXPECT_EQ(d.covariance.rolling_resistance_method, CovarianceMethod::None);
+    EXPECT_TRUE(std::isfinite(d.brush.F_x));  // the estimate itself goes on
+  }
+  // finite but absurd: carried where it stays representable (the forces are bounded by friction, so is their
+  // spread), flagged approximate; refused where it overflows; never garbage
+  const double limit = settings.friction * settings.verticalLoad();
+  const ContactEstimateData wide = run(TwistCovariance::Identity() * 1e300, CovarianceStatus::Ok);
+  EXPECT_EQ(wide.covariance.status, CovarianceStatus::Approximate);
+  EXPECT_TRUE(wide.covariance.brush.allFinite());
+  EXPECT_LE(wide.covariance.brush(0, 0), 4.0 * limit * limit);
+  const ContactEstimateData huge =
+      run(TwistCovariance::Identity() * std::numeric_limits<double>::max(), CovarianceStatus::Ok);
+  EXPECT_EQ(huge.covariance.status, CovarianceStatus::Invalid);
+  EXPECT_TRUE(huge.covariance.brush.allFinite());
+  EXPECT_EQ(huge.covariance.brush_method, CovarianceMethod::None);
+  // standstill: no slips, so no brush covariance; the rolling resistance's is still there
+  const ContactEstimateData still = run(TwistCovariance::Identity() * 1e-6, CovarianceStatus::Ok, 0.01);
+  EXPECT_EQ(still.covariance.status, CovarianceStatus::Undefined);
+  EXPECT_EQ(still.covariance.brush_method, CovarianceMethod::None);
+  EXPECT_EQ(still.covariance.rolling_resistance_method, CovarianceMethod::Unscented);
+  // just above the standstill speed, with a spread that reaches it: carried, flagged approximate
+  const ContactEstimateData near = run(TwistCovariance::Identity(), CovarianceStatus::Ok, 0.2);
+  EXPECT_EQ(near.covariance.status, CovarianceStatus::Approximate);
+  // switched off
+  EstimatorSettings off = settings;
+  off.propagate_covariance = false;
+  ContactEstimator e(off);
+  EstimatorInput in = rolling(1.0, 0.01, 0.0, 0.1, 0.0);
+  in.twist_covariance = TwistCovariance::Identity() * 1e-4;
+  EXPECT_EQ(e.update(in)->covariance.status, CovarianceStatus::Disabled);
+}
+
+TEST(EstimateCovariance, NearStandstillWithASmallSpreadAgainstMonteCarlo)
+{
+  // 0.2 m/s, four times the standstill speed, the speed's spread a twentieth of the gap: the slips' 1 / V_r is
+  // still near linear over it
+  const EstimatorSettings settings = steadySettings(BrushModelKind::Steady);
+  std::mt19937_64 rng(59);
+  EstimatorInput in = rolling(0.2, 0.05, 0.02, 0.3, 0.0);
+  Eigen::Matrix<double, 6, 1> sd;
+  sd << 0.001, 0.001, 0.0, 0.02, 0.02, 0.01;
+  in.twist_covariance = sd.cwiseAbs2().asDiagonal();
+  ContactEstimator estimator(settings);
+  const ContactEstimateData* d = estimator.update(in);
+  ASSERT_EQ(d->covariance.status, CovarianceStatus::Ok);
+  Eigen::Matrix<double, 5, 1> mean;
+  mean << in.v_contact.x(), in.v_contact.y(), in.omega.x(), in.omega.y(), in.omega.z();
+  const Eigen::Matrix4d mc = monteCarlo<5, 4>(
+      mean, usedTwistCovariance(in.twist_covariance),
+      [&](const Eigen::Matrix<double, 5, 1>& x) {
+        EstimatorInput draw = in;
+        draw.v_contact = Eigen::Vector3d(x(0), x(1), 0.0);
+        draw.omega = Eigen::Vector3d(x(2), x(3), x(4));
+        draw.twist_covariance.setZero();
+        return outputs(settings, draw, d->heading);
+      },
+      10000, rng);
+  const double limit = settings.friction * settings.verticalLoad();
+  expectClose<3>(d->covariance.brush, Eigen::Matrix3d(mc.topLeftCorner<3, 3>()),
+                 Eigen::Vector3d(1e-4 * limit, 1e-4 * limit, 1e-6 * limit), 0.10, 0.1, "0.2 m/s");
+  EXPECT_NEAR(std::sqrt(d->covariance.rolling_resistance_force_variance / mc(3, 3)), 1.0, 0.1);
+}
+
+TEST(AutoBelowTheNoise, TargetFollowsTheSpreadAndTheErrorStaysWithinIt)
+{
+  // With noisy odometry the forces' own spread s may exceed the accuracy target: auto then answers to f s
+  // (f = auto_noise_fraction), and its error against the converged reference stays within that at held inputs.
+  BrushParameters p = test::figure4Parameters();
+  p.accuracy_target = 1e-3;
+  p.auto_noise_fraction = 0.25;
+  BrushAuto quiet(p), noisy(p);
+  const ContactKinematics k = ContactKinematics::fromSlips({ 0.05, 0.02 }, 3.33, 1.0, 1.0);
+  const BrushForces ref = BrushSteady(p).evaluate({ 0.05, 0.02 }, 3.33, 3.33, 0.0, 1e-9);
+  noisy.setInputSpread(0.08);  // 8 % of mu F_z: the target becomes 2 %
+  BrushForces q, n;
+  for (int i = 0; i < 5; ++i)
+  {
+    q = quiet.update(k, 0.02);
+    n = noisy.update(k, 0.02);
+  }
+  EXPECT_NEAR(noisy.lastTarget(), 0.02, 1e-15);
+  EXPECT_EQ(quiet.lastTarget(), 1e-3);
+  EXPECT_LE(n.error_estimate, 0.02);
+  EXPECT_LE(test::forceDistance(n, ref, p), 0.02);
+  EXPECT_LE(test::forceDistance(q, ref, p), 1e-3);
+  EXPECT_LE(noisy.cost(), quiet.cost());  // never more effort for a looser target
+  // a spread below the target changes nothing
+  BrushAuto calm(p);
+  calm.setInputSpread(1e-3);
+  calm.update(k, 0.02);
+  EXPECT_EQ(calm.lastTarget(), 1e-3);
+}
+
+}  // namespace
+}  // namespace sphere_contact_estimator
