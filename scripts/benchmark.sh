@@ -23,7 +23,7 @@ log "accuracy on the operating points"
 "$BIN/model_accuracy" > "$OUT/accuracy.json"
 log "auto along the demo bag against the transient model at resolution 256 (about 3 minutes)"
 /usr/bin/python3 "$REPO/scripts/bag_model_accuracy.py" --bag-analyze "$BIN/bag_analyze" --reference-resolution 256 \
-  --before "$REPO/bench/demo_bag_before.json" --out "$OUT/bag.json"
+  --before "$REPO/bench/demo_bag_before.json" --noise-fraction 0.25 --out "$OUT/bag.json"
 log "node over roscpp on loopback (the node pinned to one core) and bag replay"
 PORT=$((20000 + RANDOM % 20000))
 export ROS_MASTER_URI="http://localhost:$PORT"

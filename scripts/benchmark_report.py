@@ -422,6 +422,23 @@ def bag_section(bag):
             cells += [fmt_share(s.get(m) or 0, total) for m in ("linear", "steady", "transient")]
             cells.append(fmt_err(s.get("max_error")))
         lines.append("| %s | %s |" % (fmt_target(r["target"]), " | ".join(cells)))
+    noisy = [r for r in bag.get("targets", []) if r.get("below_noise")]
+    if noisy:
+        f = noisy[0]["below_noise"].get("noise_fraction")
+        lines += ["", "Below the noise (issue 13): the bag's odometry carries its noise in its twist covariance, and auto's"
+                  " target rises to %s of the forces' spread carried from it where that is larger. Each message against"
+                  " the target it was computed to (brush_accuracy_target), and the replay's wall time (fastest of"
+                  " three, bag reading and writing included) without and with the rule:" % f, "",
+                  "| target | linear / steady / transient | max error | largest target | over its own target |"
+                  " largest error / own target | time, plain target | time, below the noise |", "|" + "---|" * 8]
+        for r in sorted(noisy, key=lambda r: -r["target"]):
+            s_, a = r["below_noise"], r.get("after") or {}
+            total = sum(s_.get(m) or 0 for m in ("linear", "steady", "transient"))
+            lines.append("| %s | %s | %s | %s | %d | %.2f | %s | %s |" % (
+                fmt_target(r["target"]), " / ".join(fmt_share(s_.get(m) or 0, total) for m in ("linear", "steady", "transient")),
+                fmt_err(s_.get("max_error")), fmt_err(s_.get("largest_target")), s_.get("over_own_target", 0),
+                s_.get("largest_error_over_own_target", 0.0),
+                "%.2f s" % a["time"] if a.get("time") else "-", "%.2f s" % s_["time"] if s_.get("time") else "-"))
     lines.append("")
     return lines
 

@@ -9,7 +9,9 @@ x along the rolling direction, y left, z up) and writes four PNG figures, time t
   <prefix>_friction_circle.png     F_y against F_x coloured by t, with the friction circle(s) mu F_z
 Slips and spins are undefined at standstill (slips_defined = 0) and drawn as gaps there; their axes turn
 symmetric-log when the data span more than three decades. A model that was off (brush_model or
-rr_model 0) is stated in its figure instead of being drawn as zeros.
+rr_model 0) is stated in its figure instead of being drawn as zeros. Where the CSV has the standard deviations
+carried from the odometry's covariance (brush_fx_std, brush_fy_std, brush_mz_std, rr_force_std; empty where
+unknown), the forces, M_z, F_R and mu_roll are drawn with +-2 sigma bands.
 
 Usage: plot_analysis.py CSV [--output DIR] [--prefix NAME] [--start T0] [--end T1]
 """
@@ -32,6 +34,7 @@ REQUIRED = ("t", "rolling_speed", "slips_defined", "slip_x", "slip_y", "spin", "
 BRUSH_MODELS = {1: "linear", 2: "steady", 3: "transient"}  # brush_model_used
 RR_MODELS = {1: "exact", 2: "expansion", 3: "table"}
 RR_MARKS = {2: ("C3", "point contact (past $v_c$)"), 3: ("C1", "no steady state")}  # rr_regime
+OPTIONAL = ("brush_fx_std", "brush_fy_std", "brush_mz_std", "rr_force_std")  # empty cells: unknown
 DECADES = 3.0  # beyond this span a linear axis flattens the typical values to a line at zero
 LEGEND = dict(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, fontsize=8)
 
@@ -48,9 +51,13 @@ def load_csv(path):
             missing = [c for c in REQUIRED if c not in header]
             if missing:
                 raise RuntimeError("%s: missing column(s): %s" % (path, ", ".join(missing)))
+            def optional(text):
+                text = text.strip()
+                return float(text) if text else np.nan
+            converters = {header.index(c): optional for c in OPTIONAL if c in header}
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")  # loadtxt warns on a header-only file: reported below
-                data = np.loadtxt(f, delimiter=",", ndmin=2)
+                data = np.loadtxt(f, delimiter=",", ndmin=2, converters=converters or None)
     except (OSError, ValueError) as err:
         raise RuntimeError("%s: cannot read as a numeric CSV: %s" % (path, err))
     if data.size == 0:
@@ -71,6 +78,11 @@ def prepare(d):
             d[k] = np.where(on, d[k], np.nan)
     mu_fz = d["friction"] * d["load"]
     d["mu_fz"] = np.where(mu_fz > 0, mu_fz, np.nan)  # no bound to draw where load or friction are not set
+    for k in OPTIONAL:  # older CSVs have none: no bands
+        d.setdefault(k, np.full(d["t"].shape, np.nan))
+    for k in ("brush_fx_std", "brush_fy_std", "brush_mz_std"):
+        d[k] = np.where(d["brush_on"], d[k], np.nan)
+    d["rr_force_std"] = np.where(d["rr_on"], d["rr_force_std"], np.nan)
 
 
 def marks(d):
@@ -122,6 +134,13 @@ def lines(ax, d, specs):
         ax.plot(d["t"], d[key], colour, lw=1, label=label, **marks(d))
 
 
+def band(ax, t, y, sd, colour, label):
+    """+-2 sigma about y where sd is known (the odometry's covariance carried through the model)."""
+    known = np.isfinite(sd) & np.isfinite(y)
+    if known.any():
+        ax.fill_between(t, y - 2.0 * sd, y + 2.0 * sd, where=known, color=colour, alpha=0.25, lw=0, label=label)
+
+
 def names(values, table):
     used = [int(v) for v in np.unique(values[np.isfinite(values)]) if int(v) in table]
     return "/".join(table[v] for v in used) or "off"
@@ -136,6 +155,9 @@ def plot_forces(d, title):
     if on.any():
         lines(ax_f, d, (("brush_fx", "C0", "$F_x$ (along rolling)"), ("brush_fy", "C2", "$F_y$ (left)")))
         lines(ax_m, d, (("brush_mz", "C4", "$M_z$ (about z up)"),))
+        band(ax_f, t, d["brush_fx"], d["brush_fx_std"], "C0", "$\\pm 2\\sigma$ from the odometry")
+        band(ax_f, t, d["brush_fy"], d["brush_fy_std"], "C2", None)
+        band(ax_m, t, d["brush_mz"], d["brush_mz_std"], "C4", "$\\pm 2\\sigma$ from the odometry")
     for ax in (ax_f, ax_m):
         shade(ax, t, d["sliding_fraction"] > 0.5, "C3", "mostly sliding\n(sliding fraction > 0.5)")
         if not on.any():
@@ -178,6 +200,11 @@ def plot_rolling_resistance(d, title):
         y = d[key] * scale
         if on.any():
             ax.plot(t, y, "C0", lw=1, label="static / contact patch", **marks(d))
+            if key in ("rr_force", "rr_mu_roll"):  # mu_roll = R F_R / (M g): the same relative spread
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    relative = np.where(d["rr_force"] != 0, d["rr_force_std"] / np.abs(d["rr_force"]), np.nan)
+                band(ax, t, y, np.abs(y) * relative if key == "rr_mu_roll" else d["rr_force_std"], "C0",
+                     "$\\pm 2\\sigma$ from the odometry")
         for r, (c, label) in RR_MARKS.items():  # drawn over the base line so the switch stays continuous
             if (regime[on] == r).any():
                 ax.plot(t, np.where(regime == r, y, np.nan), c, lw=2, marker=".", ms=3, label=label)

@@ -15,7 +15,7 @@ EstimateCsv::EstimateCsv(std::ostream& out) : out_(out)
           "brush_valid,"
           "brush_power,rr_model,rr_speed,rr_h,rr_xi_plus,rr_xi_minus,rr_force,rr_torque,rr_mu_roll,rr_regime,"
           "rr_flags,rr_valid,rr_power,valid,flags,compute_time,covariance_status,brush_covariance_method,brush_fx_std,"
-          "brush_fy_std,brush_mz_std,rr_force_std\n";
+          "brush_fy_std,brush_mz_std,rr_force_std,brush_accuracy_target\n";
 }
 
 void EstimateCsv::write(const ContactEstimate& e)
@@ -63,7 +63,8 @@ void EstimateCsv::write(const ContactEstimate& e)
     std::snprintf(std_fields, sizeof(std_fields), "%.6g", std::sqrt(e.rolling_resistance_force_variance));
     out_ << std_fields;
   }
-  out_ << '\n';
+  std::snprintf(std_fields, sizeof(std_fields), ",%.6g\n", e.brush_accuracy_target);
+  out_ << std_fields;
 }
 
 }  // namespace sphere_contact_estimator

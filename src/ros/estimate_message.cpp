@@ -77,6 +77,7 @@ void toMessage(const ContactEstimateData& e, ContactEstimate& m)
   m.sliding_fraction = e.brush.sliding_fraction;
   m.max_utilisation = e.brush.max_utilisation;
   m.brush_error_estimate = e.brush.error_estimate;
+  m.brush_accuracy_target = e.brush_target;
   m.friction = e.friction;
   m.brush_power = e.brush_power;
   m.brush_flags = e.brush.flags;

@@ -163,6 +163,10 @@ int main(int argc, char** argv)
   nav_msgs::Odometry odom;
   odom.header.frame_id = frame_id;
   odom.child_frame_id = child_frame_id;
+  // the sensor noise is the odometry's own account of its uncertainty (row-major: linear x, y, z, angular x, y, z;
+  // linear z is exactly 0)
+  odom.twist.covariance[0] = odom.twist.covariance[7] = noise_velocity * noise_velocity;
+  odom.twist.covariance[21] = odom.twist.covariance[28] = odom.twist.covariance[35] = noise_omega * noise_omega;
   for (std::size_t i = 0; i < samples.size() && ros::ok(); ++i)
   {
     const sce::ScenarioSample& s = samples[i];

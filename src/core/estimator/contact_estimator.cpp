@@ -234,6 +234,7 @@ void ContactEstimator::runBrush(const ContactKinematics& kin, double dt, double 
   o.brush_model = settings_.brush_model;
   o.brush_model_used = BrushModelKind::Off;
   o.brush_resolution = 0;
+  o.brush_target = 0.0;
   o.brush = BrushForces{};
   o.friction = 0.0;
   o.patch_radius = patch_radius_;
@@ -244,6 +245,7 @@ void ContactEstimator::runBrush(const ContactKinematics& kin, double dt, double 
     o.brush = brush_->update(kin, dt);
     o.brush_model_used = brush_->lastModel();
     o.brush_resolution = brush_->lastResolution();
+    o.brush_target = brush_->lastTarget();
     const Eigen::Vector2d F = paper_frame::toRos(Eigen::Vector2d(o.brush.F_x, o.brush.F_y));
     o.brush.F_x = F.x();
     o.brush.F_y = F.y();

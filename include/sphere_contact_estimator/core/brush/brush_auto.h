@@ -51,7 +51,7 @@ public:
   /// mu F_z). The flag kAccuracyNotMet then compares the estimate with that target.
   void setInputSpread(double spread) override { input_spread_ = std::isfinite(spread) && spread > 0.0 ? spread : 0.0; }
   /// The target the last update met: accuracy_target, or above it below the noise.
-  double lastTarget() const { return target_; }
+  double lastTarget() const override { return target_; }
   BrushModelKind kind() const override { return BrushModelKind::Auto; }
 
   /// The model that produced the last update, and its resolution (0 for linear and steady).

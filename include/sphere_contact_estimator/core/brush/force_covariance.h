@@ -20,7 +20,7 @@ namespace sphere_contact_estimator
 /// - The linear model: J Sigma J^T with the exact Jacobian of eqs. 61-62 and of the scaling onto the friction circle
 ///   past mu F_z (Jacobian).
 /// - The steady, transient and auto models: the unscented transform (2 sigma points at +-sqrt(3) standard
-///   deviations along each of Sigma's principal axes with a spread, up to 8) through the steady model, each to a tolerance of a fiftieth of the spread it
+///   deviations along each of Sigma's principal axes with a spread, up to 8) through the steady model, each to a tolerance of a twentieth of the spread it
 ///   resolves. A stateless map is needed for sigma points, and an error in the inputs that persists over the patch's
 ///   memory moves the transient state to the steady one of the moved inputs: the steady sensitivity is that of an
 ///   input error held for a transit (a bias); white noise on messages closer than a transit moves the forces less.

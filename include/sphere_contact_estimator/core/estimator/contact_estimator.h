@@ -63,6 +63,7 @@ struct ContactEstimateData
   BrushModelKind brush_model = BrushModelKind::Off;       ///< as configured
   BrushModelKind brush_model_used = BrushModelKind::Off;  ///< the model that ran (differs under auto)
   int brush_resolution = 0;                         ///< the transient model's resolution (0: linear, steady, off)
+  double brush_target = 0.0;  ///< the accuracy target the brush answer was computed to (BrushModel::lastTarget)
   BrushForces brush;          ///< F_x, F_y [N], M_z [N m] on the sphere, ROS contact frame
   double friction = 0.0;      ///< mu in force (0 with the brush model off)
   /// Power the ground's stresses take from the sphere's contact material, -(F_t . V_s + M_z omega_z) [W]:
