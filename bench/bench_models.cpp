@@ -2,6 +2,7 @@
 // (bench/model_accuracy.cpp); scripts/benchmark.sh joins the two into docs/benchmarks.md.
 
 // STL
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "sphere_contact_estimator/core/brush/brush_linear.h"
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
 #include "sphere_contact_estimator/core/brush/brush_transient.h"
+#include "sphere_contact_estimator/core/brush/force_covariance.h"
 #include "sphere_contact_estimator/core/estimator/contact_estimator.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_exact.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_expansion.h"
@@ -121,6 +123,56 @@ void BM_BrushTransientNoisyStep(benchmark::State& state)
 BENCHMARK(BM_BrushTransientNoisyStep)
     ->ArgsProduct({ { 8, 12, 16, 24, 32, 48 }, { 0, 1 } })
     ->ArgNames({ "resolution", "tilt" });
+
+// The forces' covariance from the slips' (the unscented transform through the steady model), against one steady
+// evaluation at the tolerance the sigma points use, on the Fig. 4 parameters (partial sliding with spin) and on the
+// demo robot (config/contact_estimator.yaml: a = 1 cm, k = 2e8, F_z = 49 N, mu = 0.8) at the demo bag's slips and
+// noise (0.005 m/s and 0.02 rad/s at 1.5 m/s).
+sce::BrushParameters demoRobot()
+{
+  sce::BrushParameters p;
+  p.a = 0.01;
+  p.k = 2e8;
+  p.F_z = 5.0 * 9.81;
+  p.mu = 0.8;
+  return p;
+}
+
+void BM_ForceCovariance(benchmark::State& state)
+{
+  const bool demo = state.range(0) != 0;
+  const sce::BrushParameters p = demo ? demoRobot() : figure4(16, false);
+  const Eigen::Vector2d sigma = demo ? Eigen::Vector2d(0.003, 0.002) : Eigen::Vector2d(0.05, 0.02);
+  const double phi = demo ? 0.3 : 3.33;
+  const double s = demo ? 0.005 / 1.5 : 0.005;
+  const Eigen::Matrix3d S = Eigen::Vector3d(s * s, s * s, (demo ? 0.02 / 1.5 : 0.1) * (demo ? 0.02 / 1.5 : 0.1)).asDiagonal();
+  int evaluations = 0;
+  for (auto _ : state)
+  {
+    const sce::ForceCovariance c = sce::propagateSlipCovariance(sce::BrushModelKind::Steady, p, sigma, phi, 1.0, S);
+    evaluations = c.evaluations;
+    benchmark::DoNotOptimize(c.covariance);
+  }
+  state.counters["evaluations"] = evaluations;
+}
+BENCHMARK(BM_ForceCovariance)->Arg(0)->Arg(1)->ArgName("demo");
+
+void BM_SteadyAtCovarianceTolerance(benchmark::State& state)
+{
+  // one evaluation at the tolerance the sigma points above use (a twentieth of the forces' spread)
+  const bool demo = state.range(0) != 0;
+  sce::BrushParameters p = demo ? demoRobot() : figure4(16, false);
+  const Eigen::Vector2d sigma = demo ? Eigen::Vector2d(0.003, 0.002) : Eigen::Vector2d(0.05, 0.02);
+  const double phi = demo ? 0.3 : 3.33;
+  const double s = demo ? 0.005 / 1.5 : 0.005;
+  const Eigen::Matrix3d S = Eigen::Vector3d(s * s, s * s, (demo ? 0.02 / 1.5 : 0.1) * (demo ? 0.02 / 1.5 : 0.1)).asDiagonal();
+  p.accuracy_target = std::clamp(
+      0.05 * sce::propagateSlipCovariance(sce::BrushModelKind::Steady, p, sigma, phi, 1.0, S).spread(p), 1e-7, 1e-2);
+  const sce::BrushSteady model(p);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(model.evaluate(sigma, phi, phi, 0.0));
+}
+BENCHMARK(BM_SteadyAtCovarianceTolerance)->Arg(0)->Arg(1)->ArgName("demo");
 
 // a sweep through the contact-patch regime
 template <class Model>

@@ -12,6 +12,8 @@
 //  - transient: the transient model at held inputs, by resolution (its largest error and estimate over two lattice
 //    spacings of travel after 6a), at the example point and at Fig. 4 points; over the whole Fig. 4 set and
 //    random points, how many converge monotonically, the observed order and how often the estimate fell short.
+//  - uncertainty: the forces' covariance from the slips' (the unscented transform through the steady model) against
+//    Monte Carlo at random operating points, at two spreads of the slips.
 // Cylinder: |d mu_roll| / mu_roll on the paper's rubber (g = 10) against the exact solution of eq. 18.
 
 // STL
@@ -23,6 +25,9 @@
 #include <string>
 #include <vector>
 
+// Eigen
+#include <Eigen/Cholesky>
+
 // Package
 #include "brush_brute_force.h"
 #include "brush_marching.h"
@@ -30,6 +35,8 @@
 #include "sphere_contact_estimator/core/brush/brush_linear.h"
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
 #include "sphere_contact_estimator/core/brush/brush_transient.h"
+#include "sphere_contact_estimator/core/brush/force_covariance.h"
+#include "sphere_contact_estimator/core/numerics/unscented_transform.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_exact.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_expansion.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_table.h"
@@ -403,6 +410,93 @@ void transientSection()
   std::printf("\n  ],\n");
 }
 
+// The brush forces' covariance from the slips' against Monte Carlo at random operating points: the slips spread by
+// `relative` of their size (plus a floor) with a random correlation; the unscented transform through the steady
+// model against `draws` draws of it (each to 1/200 of the spread): the largest relative error of a standard
+// deviation and of a correlation, and where.
+void uncertaintySection()
+{
+  std::mt19937_64 rng(2027);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> g(0.0, 1.0);
+  const std::vector<Point> points = randomPoints(200, 2027);
+  std::printf("  \"uncertainty\": [");
+  bool first = true;
+  for (double relative : { 0.02, 0.1 })
+  {
+    double worst_sd = 0.0, worst_corr = 0.0, sum_us = 0.0;
+    int count = 0, evaluations = 0, over = 0;
+    std::string worst_at = "null";
+    for (const Point& q : points)
+    {
+      if (q.p.tilt && std::abs(q.pg()) * q.p.a > 0.9)
+        continue;
+      const Eigen::Vector3d sd(relative * std::abs(q.sigma.x()) + 1e-5, relative * std::abs(q.sigma.y()) + 1e-5,
+                               relative * std::abs(q.phi) + 1e-5 / q.p.a);
+      Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+      R(0, 1) = R(1, 0) = 0.6 * (2.0 * u(rng) - 1.0);
+      R(1, 2) = R(2, 1) = 0.3 * (2.0 * u(rng) - 1.0);
+      const Eigen::Matrix3d S = sd.asDiagonal() * R * sd.asDiagonal();
+      const auto start = std::chrono::steady_clock::now();
+      const sce::ForceCovariance c = sce::propagateSlipCovariance(sce::BrushModelKind::Steady, q.p, q.sigma, q.phi, q.chi, S);
+      sum_us += std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+      evaluations += c.evaluations;
+      if (!c.defined)
+        continue;
+      const sce::BrushSteady steady(q.p);
+      const double tolerance = std::max(1e-7, 0.005 * c.spread(q.p));
+      const Eigen::LLT<Eigen::Matrix3d> llt(S);
+      const Eigen::Matrix3d L = llt.matrixL();
+      const int draws = 2000;
+      std::vector<Eigen::Vector3d> y;
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      for (int i = 0; i < draws; ++i)
+      {
+        const Eigen::Vector3d x = Eigen::Vector3d(q.sigma.x(), q.sigma.y(), q.phi) + L * Eigen::Vector3d(g(rng), g(rng), g(rng));
+        const sce::BrushForces f = steady.evaluate({ x(0), x(1) }, x(2), q.chi * x(2), (1.0 - q.chi) * x(2), tolerance);
+        y.emplace_back(f.F_x, f.F_y, f.M_z);
+        mean += y.back();
+      }
+      mean /= draws;
+      Eigen::Matrix3d mc = Eigen::Matrix3d::Zero();
+      for (const Eigen::Vector3d& v : y)
+        mc += (v - mean) * (v - mean).transpose();
+      mc /= draws - 1;
+      const double limit = q.p.mu * q.p.F_z;
+      const Eigen::Vector3d floor(1e-5 * limit, 1e-5 * limit, 1e-5 * limit * q.p.a);
+      double sd_err = 0.0, corr_err = 0.0;
+      for (int i = 0; i < 3; ++i)
+      {
+        const double b = std::sqrt(mc(i, i)), a = std::sqrt(std::max(0.0, c.covariance(i, i)));
+        if (!(b > floor(i)))
+          continue;
+        sd_err = std::max(sd_err, std::abs(a / b - 1.0));
+        for (int j = i + 1; j < 3; ++j)
+        {
+          const double bj = std::sqrt(mc(j, j)), aj = std::sqrt(std::max(0.0, c.covariance(j, j)));
+          if (bj > floor(j) && a > 0.0 && aj > 0.0)
+            corr_err = std::max(corr_err, std::abs(c.covariance(i, j) / (a * aj) - mc(i, j) / (b * bj)));
+        }
+      }
+      over += sd_err > 0.1 || corr_err > 0.1;
+      if (sd_err > worst_sd)
+      {
+        worst_sd = sd_err;
+        worst_at = "{" + describe(q) + "}";
+      }
+      worst_corr = std::max(worst_corr, corr_err);
+      ++count;
+    }
+    std::printf("%s\n    {\"relative_spread\": %g, \"points\": %d, \"draws\": 2000, \"worst_sd_error\": %.3g, "
+                "\"worst_correlation_error\": %.3g, \"over_tolerance\": %d, \"worst_at\": %s, \"mean_evaluations\": %.2f, "
+                "\"mean_time_us\": %.1f}",
+                first ? "" : ",", relative, count, worst_sd, worst_corr, over, worst_at.c_str(),
+                count ? static_cast<double>(evaluations) / count : 0.0, count ? sum_us / count : 0.0);
+    first = false;
+  }
+  std::printf("\n  ],\n");
+}
+
 void cylinderSection()
 {
   // the paper's rubber, below, at and past v*, and past the critical speed
@@ -479,6 +573,7 @@ int main(int argc, char** argv)
   randomSection(n);
   figure4Section();
   transientSection();
+  uncertaintySection();
   cylinderSection();
   std::printf("}\n");
   return 0;

@@ -255,6 +255,43 @@ TEST(ContactEvalBrush, HertzPatchRadius)
   EXPECT_NEAR(j["patch_radius"].get<double>(), std::cbrt(3.0 * 3000 * 0.2 / (4.0 * 1e7)), 1e-15);
 }
 
+TEST(ContactEvalBrush, CovarianceOfTheForces)
+{
+  // the linear model: J Sigma J^T with eqs. 61-62 (C_sigma = 8/3 k a^3 on the Fig. 4 parameters); the steady model
+  // by the unscented transform; a zero covariance exactly zero
+  const std::string point = "--sigma-x 0.001 --sigma-y 0.0005 --phi 0.1 " + kFig4;
+  const auto lin = nlohmann::json::parse(contactEval("brush --model linear " + point + "--covariance 1e-8 0 0 4e-8 0 0").out);
+  ASSERT_TRUE(lin["covariance"].is_array());
+  ASSERT_EQ(lin["covariance"].size(), 9u);
+  EXPECT_EQ(lin["covariance_method"], "jacobian");
+  const double C_sigma = 8.0 / 3.0 * 1.023e8 * 0.05 * 0.05 * 0.05;
+  EXPECT_NEAR(lin["covariance"][0].get<double>(), C_sigma * C_sigma * 1e-8, 1e-9 * C_sigma * C_sigma * 1e-8);
+  EXPECT_NEAR(lin["covariance"][4].get<double>(), C_sigma * C_sigma * 4e-8, 1e-9 * C_sigma * C_sigma * 4e-8);
+  EXPECT_DOUBLE_EQ(lin["covariance"][1].get<double>(), 0.0);
+  EXPECT_NEAR(lin["std"][0].get<double>(), C_sigma * 1e-4, 1e-9 * C_sigma);
+  const auto st = nlohmann::json::parse(contactEval("brush --model steady " + point + "--covariance 1e-8 0 0 4e-8 0 0").out);
+  EXPECT_EQ(st["covariance_method"], "unscented");
+  EXPECT_NEAR(st["covariance"][0].get<double>(), lin["covariance"][0].get<double>(),
+              0.05 * lin["covariance"][0].get<double>());  // adhesion: the two models agree
+  const auto zero = nlohmann::json::parse(contactEval("brush --model steady " + point + "--covariance 0 0 0 0 0 0").out);
+  EXPECT_EQ(zero["covariance_method"], "zero");
+  for (const auto& x : zero["covariance"])
+    EXPECT_EQ(x.get<double>(), 0.0);
+}
+
+TEST(ContactEval, SpeedStdGivesTheSpreadOfTheResistance)
+{
+  const auto j = nlohmann::json::parse(contactEval(kPaper + "--speed 0.7 --speed-std 0.01").out);
+  EXPECT_EQ(j["spread_method"], "unscented");
+  // small spread: the derivative times the speed's sd
+  const CylinderExact model(paper());
+  const double dF = (model.solve(0.7 + 1e-5).F_R - model.solve(0.7 - 1e-5).F_R) / 2e-5;
+  EXPECT_NEAR(j["F_R_std"].get<double>(), std::abs(dF) * 0.01, 0.01 * std::abs(dF) * 0.01);
+  EXPECT_GT(j["mu_roll_std"].get<double>(), 0.0);
+  const auto zero = nlohmann::json::parse(contactEval(kPaper + "--speed 0.7 --speed-std 0").out);
+  EXPECT_EQ(zero["F_R_std"].get<double>(), 0.0);
+}
+
 TEST(ContactEvalBrush, BadInputFailsWithAMessage)
 {
   for (const std::string& args : std::vector<std::string>{
@@ -270,6 +307,12 @@ TEST(ContactEvalBrush, BadInputFailsWithAMessage)
            "slips --omega 0 0 1 --vc 0 0 --rolling-radius 0",
            "slips --omega 0 0 1 --vc 0 inf --rolling-radius 0.1",
            "slips --omega 0 0 1 --vc 0 0 --rolling-radius 0.1 --turn-rate 1 --tilt-ratio 0.5",
+           "brush --sigma-x 0 --sigma-y 0 --phi 0 " + kFig4 + "--covariance 1e-6 0 0 -1e-6 0 1e-4",  // negative
+           "brush --sigma-x 0 --sigma-y 0 --phi 0 " + kFig4 + "--covariance 1e-6 5e-6 0 1e-6 0 1e-4",  // beyond +-1
+           "brush --sigma-x 0 --sigma-y 0 --phi 0 " + kFig4 + "--covariance 1e-6 nan 0 1e-6 0 1e-4",
+           "brush --sigma-x 0 --sigma-y 0 --phi 0 " + kFig4 + "--covariance 1e-6 0 0",  // not six numbers
+           kPaper + "--speed 0.5 --speed-std -0.1",
+           kPaper + "--speed 0.5 --speed-std nan",
        })
   {
     const Outcome r = contactEval(args);

@@ -322,6 +322,55 @@ TEST_F(EstimatorIo, NonFiniteTwistIsSkippedDiagnosedAndSurvived)
   g_clock += 1.0;
 }
 
+TEST_F(EstimatorIo, TwistCovarianceReachesTheEstimateAndBadOnesAreDiagnosed)
+{
+  // a sound covariance: the forces' covariance in the estimate, symmetric, with positive variances
+  nav_msgs::Odometry o = odometry(g_clock, 1.0, 0.3, 0.01, 0.005, 0.2);
+  for (int i : { 0, 7 })
+    o.twist.covariance[i] = 1e-5;  // linear x, y [m^2/s^2]
+  for (int i : { 21, 28, 35 })
+    o.twist.covariance[i] = 1e-3;  // angular x, y, z [rad^2/s^2]
+  odom_pub_.publish(o);
+  // NaN, then the ROS "unknown" convention on a component the estimate uses: the estimate goes on, the covariance is
+  // unknown (element 0 = -1) and says why
+  nav_msgs::Odometry nan = o, unknown = o;
+  nan.header.stamp = ros::Time(g_clock + 0.01);
+  nan.twist.covariance[1] = nan.twist.covariance[6] = std::numeric_limits<double>::quiet_NaN();
+  odom_pub_.publish(nan);
+  unknown.header.stamp = ros::Time(g_clock + 0.02);
+  unknown.twist.covariance[35] = -1.0;
+  odom_pub_.publish(unknown);
+  ASSERT_TRUE(waitFor([&] { return estimateAt(ros::Time(g_clock + 0.02)) != nullptr; }, 5.0));
+  ASSERT_TRUE(waitFor([&] {
+    const auto it = diagnostics_.find(kNode.substr(1) + ": uncertainty");
+    return it != diagnostics_.end() && it->second.level == diagnostic_msgs::DiagnosticStatus::WARN &&
+           it->second.message.find("unusable") != std::string::npos;
+  }, 10.0));
+  std::lock_guard<std::mutex> lock(mutex_);
+  const sce::ContactEstimate* good = estimateAt(ros::Time(g_clock));
+  ASSERT_NE(good, nullptr);
+  EXPECT_EQ(good->covariance_status, sce::ContactEstimate::COVARIANCE_OK);
+  EXPECT_NE(good->brush_covariance_method, sce::ContactEstimate::COVARIANCE_METHOD_NONE);
+  for (int i : { 0, 4, 8 })
+    EXPECT_GT(good->brush_covariance[i], 0.0) << i;
+  EXPECT_DOUBLE_EQ(good->brush_covariance[1], good->brush_covariance[3]);
+  EXPECT_GT(good->rolling_resistance_force_variance, 0.0);
+  const sce::ContactEstimate* refused = estimateAt(ros::Time(g_clock + 0.01));
+  ASSERT_NE(refused, nullptr);
+  EXPECT_EQ(refused->covariance_status, sce::ContactEstimate::COVARIANCE_INVALID);
+  EXPECT_EQ(refused->brush_covariance[0], -1.0);
+  EXPECT_EQ(refused->rolling_resistance_force_variance, -1.0);
+  EXPECT_TRUE(std::isfinite(refused->brush_force.x));
+  const sce::ContactEstimate* marked = estimateAt(ros::Time(g_clock + 0.02));
+  ASSERT_NE(marked, nullptr);
+  EXPECT_EQ(marked->covariance_status, sce::ContactEstimate::COVARIANCE_UNKNOWN);
+  EXPECT_EQ(marked->brush_covariance[0], -1.0);
+  for (const auto& e : estimates_)
+    for (double c : e.brush_covariance)
+      EXPECT_TRUE(std::isfinite(c));
+  g_clock += 1.0;
+}
+
 TEST_F(EstimatorIo, MissingTfNeverBlocks)
 {
   // a ground frame nobody publishes: no tf, and the odometry's orientation is in another frame
