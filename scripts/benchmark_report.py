@@ -380,19 +380,29 @@ def uncertainty_section(acc, g):
              "The covariance of (F_x, F_y, M_z) from that of the slips and spin (σ_x, σ_y, φ) by the unscented"
              " transform through the steady model (force_covariance.h), against Monte Carlo (2000 draws of the steady"
              " model each, to 1/200 of the spread) at seeded random operating points over the envelope; the slips"
-             " spread by the given share of their own size (plus a floor of 1e-5) with random correlations. Errors:"
-             " relative, of each standard deviation, and absolute, of each correlation, where the Monte Carlo standard"
-             " deviation is above 1e-5 μF_z. The Monte Carlo error itself is about 1.6 % on a standard deviation and"
-             " 0.02 on a correlation.", "",
-             "| spread of the slips | points | largest sd error | largest correlation error | points beyond 10 % or 0.1 |"
-             " evaluations per point | mean time |", "|---|---|---|---|---|---|---|"]
+             " spread by the given share of their own size (plus a floor of 1e-5) with random correlations. Errors: of"
+             " each standard deviation, relative to the larger of itself and a fifth of the largest (M_z over a; the"
+             " sigma points resolve the largest spread, a far smaller one only to that), and absolute, of each"
+             " correlation between components so resolved, where the Monte Carlo standard deviation is above 1e-5 μF_z."
+             " The Monte Carlo error itself is about 1.6 % on a standard deviation and 0.02 on a correlation. Points"
+             " the transform flags as not smooth over the spread (ForceCovariance::smooth: a kink or jump within it,"
+             " or the edge of the steady state with tilt; the estimate's status is then APPROXIMATE) are counted"
+             " apart.", "",
+             "| spread of the slips | points | smooth: largest sd error | smooth: largest correlation error |"
+             " smooth: beyond 10 % or 0.1 | flagged not smooth | flagged: beyond 10 % or 0.1 | evaluations per point |"
+             " mean time | smooth: largest sd error, linearised instead |", "|" + "---|" * 10]
     for r in rows:
-        lines.append("| %g %% | %d | %.3f | %.3f | %d | %.1f | %.0f µs |" % (
+        lines.append("| %g %% | %d | %.3f | %.3f | %d | %d | %d | %.1f | %.0f µs | %s |" % (
             100 * r["relative_spread"], r["points"], r["worst_sd_error"], r["worst_correlation_error"],
-            r["over_tolerance"], r["mean_evaluations"], r["mean_time_us"]))
+            r["over_tolerance"], r.get("flagged", 0), r.get("over_tolerance_flagged", 0), r["mean_evaluations"],
+            r["mean_time_us"], "%.3f" % r["worst_sd_error_linearised"] if "worst_sd_error_linearised" in r else "-"))
+    lines += ["", "The last column: the same covariance linearised instead, by central differences of the steady model"
+              " along the principal axes of the slips' covariance (a hundredth of a standard deviation each way, as"
+              " many evaluations): exact where the model is smooth, far off where the spread reaches the onset of"
+              " sliding or the friction limit, which is why the package uses the unscented transform there."]
     worst = [r for r in rows if r.get("worst_at")]
     if worst:
-        lines += ["", "Where the standard deviation was furthest off:", ""]
+        lines += ["", "Where a standard deviation was furthest off among the smooth points:", ""]
         for r in worst:
             w = r["worst_at"]
             lines.append("- %g %%: %s, %s, a = %.3g mm, F_z = %.4g N, μ = %.2g, k = %.2g N/m³, σ = (%.3g, %.3g),"

@@ -248,6 +248,10 @@ void runBrushCommand(const BrushOptions& o, std::ostream& out)
     else
       j["covariance"] = nullptr;
     j["covariance_method"] = toString(c.method);
+    j["covariance_smooth"] = c.smooth;
+    if (!c.smooth)
+      j["warnings"].push_back("the forces kink or jump within the inputs' spread (the onset of sliding, the friction "
+                              "limit): the covariance is only approximate");
     if (!c.defined)
       j["warnings"].push_back("no covariance: the steady state does not exist over the inputs' spread (|R_gamma| < a)");
   }

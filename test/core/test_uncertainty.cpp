@@ -239,6 +239,20 @@ TEST(ForceCovariance, SteadyModelAgainstMonteCarlo)
   EXPECT_EQ(checked, 6);
 }
 
+TEST(ForceCovariance, SaysWhereTheForcesBendOverTheSpread)
+{
+  // Full sliding with a lateral slip far smaller than the longitudinal slip's spread: F_y = mu F_z sigma_y / |sigma|
+  // peaks at sigma_x = 0, an even bend that the transform's moments do not follow. Small slips in adhesion: smooth.
+  const BrushParameters p = test::figure4Parameters();
+  const Eigen::Matrix3d wide = Eigen::Vector3d(0.1 * 0.1, 1e-8, 1e-8).asDiagonal();
+  const ForceCovariance bent = propagateSlipCovariance(BrushModelKind::Steady, p, { 0.0, 0.01 }, 0.0, 1.0, wide);
+  EXPECT_FALSE(bent.smooth);
+  const Eigen::Matrix3d narrow = Eigen::Vector3d(1e-10, 1e-10, 1e-6).asDiagonal();
+  const ForceCovariance smooth = propagateSlipCovariance(BrushModelKind::Steady, p, { 1e-4, 5e-5 }, 0.01, 1.0, narrow);
+  EXPECT_TRUE(smooth.smooth);
+  EXPECT_EQ(smooth.evaluations, 7);  // the mean too, for the bend
+}
+
 TEST(CylinderSpread, AgainstMonteCarloBelowAtAndPastTheCriticalSpeeds)
 {
   // The paper's rubber: below, at and past v*, and past v_c (point contact): F_R and mu_roll's sd within 10 %.

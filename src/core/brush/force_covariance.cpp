@@ -115,11 +115,11 @@ ForceCovariance propagate(BrushModelKind kind, const BrushParameters& p, const E
           const Eigen::Vector2d F = rotation(psi) * Eigen::Vector2d(f.F_x, f.F_y);
           return Eigen::Vector3d(F.x(), F.y(), f.M_z);
         },
-        0.0);
+        0.0, true);
   };
   ForceCovariance guess;
   guess.covariance = J * Sigma * J.transpose();
-  const auto tolerance = [](double spread) { return std::clamp(0.05 * spread, 1e-7, 1e-2); };
+  const auto tolerance = [](double spread) { return std::clamp(0.05 * spread, 1e-6, 1e-2); };
   const double first = tolerance(guess.spread(p));
   Unscented<N, 3> u = transform(first);
   out.evaluations = u.evaluations;
@@ -132,6 +132,11 @@ ForceCovariance propagate(BrushModelKind kind, const BrushParameters& p, const E
     out.covariance = u.covariance;
   }
   out.method = CovarianceMethod::Unscented;
+  out.smooth = u.curvature <= ForceCovariance::kSmooth;
+  // with tilt the steady state ends where |R_gamma| reaches a (Fig. 2): near that edge the forces change without
+  // bound, and a spread of phi_gamma that reaches it within three standard deviations is beyond the sigma points
+  if (p.tilt && p.a * std::abs(chi_gamma) * (std::abs(phi) + 3.0 * std::sqrt(std::max(0.0, Sigma(2, 2)))) >= 1.0)
+    out.smooth = false;
   if (!exists)
   {
     out.covariance.setZero();

@@ -334,8 +334,9 @@ void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double
     c.status = CovarianceStatus::Invalid;
     return;
   }
-  // the slips divide by V_r: where its spread reaches the standstill speed, the linearisation is out of its range
-  if (speed - 3.0 * std::sqrt(c.rolling_speed_variance) < settings_.standstill_speed)
+  // the slips divide by V_r: where its spread reaches the standstill speed, the linearisation is out of its range;
+  // and where the forces kink or jump over the spread, the transform's moments are only approximate
+  if (speed - 3.0 * std::sqrt(c.rolling_speed_variance) < settings_.standstill_speed || !f.smooth)
     c.status = CovarianceStatus::Approximate;
 }
 

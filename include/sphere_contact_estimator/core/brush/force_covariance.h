@@ -20,8 +20,9 @@ namespace sphere_contact_estimator
 /// - The linear model: J Sigma J^T with the exact Jacobian of eqs. 61-62 and of the scaling onto the friction circle
 ///   past mu F_z (Jacobian).
 /// - The steady, transient and auto models: the unscented transform (2 sigma points at +-sqrt(3) standard
-///   deviations along each of Sigma's principal axes with a spread, up to 8) through the steady model, each to a tolerance of a twentieth of the spread it
-///   resolves. A stateless map is needed for sigma points, and an error in the inputs that persists over the patch's
+///   deviations along each of Sigma's principal axes with a spread, up to 8, and the mean, for the bend) through the
+///   steady model, each to a tolerance of a twentieth of the largest spread it resolves (a component whose spread is
+///   far smaller is resolved to that, not to its own). A stateless map is needed for sigma points, and an error in the inputs that persists over the patch's
 ///   memory moves the transient state to the steady one of the moved inputs: the steady sensitivity is that of an
 ///   input error held for a transit (a bias); white noise on messages closer than a transit moves the forces less.
 ///   The linearisation is exact only while the model is smooth over the spread; the sliding limit, the onset of
@@ -33,6 +34,12 @@ struct ForceCovariance
   CovarianceMethod method = CovarianceMethod::None;
   bool defined = false;  ///< false: no covariance (the steady state does not exist at the inputs' spread)
   int evaluations = 0;   ///< model evaluations spent
+  /// False where the forces bend over the spread as much as they change across it (a kink or a jump: the onset of
+  /// sliding, the friction limit; Unscented::curvature above kSmooth), or, with tilt, where phi_gamma's spread
+  /// reaches the edge of the steady state (|R_gamma| = a) within three standard deviations: the covariance is then
+  /// only approximate. Always true for Zero and Jacobian.
+  bool smooth = true;
+  static constexpr double kSmooth = 0.25;
   /// The largest standard deviation, max(sd F_x, sd F_y, sd M_z / a) / (mu F_z), the unit of accuracy_target.
   double spread(const BrushParameters& p) const;
 };

@@ -25,13 +25,18 @@ struct Unscented
   Eigen::Matrix<double, M, 1> mean;
   Eigen::Matrix<double, M, M> covariance;
   int evaluations = 0;  ///< how often f was called
+  /// With check_curvature: how far f is from linear over the spread, the largest |y+ + y- - 2 y(mean)| over
+  /// |y+ - y-| along a principal axis, over the outputs whose change along that axis is at least a tenth of their
+  /// largest. 0 for f linear; about 1 or more at a kink or a jump inside the spread, where the transform's
+  /// moments stop matching those of the distribution (0 when not checked).
+  double curvature = 0.0;
 };
 
 /// f(const Eigen::Matrix<double, N, 1>&) -> Eigen::Matrix<double, M, 1>. P must be symmetric positive semi-definite
 /// (negative eigenvalues from rounding count as zero); kappa > -N.
 template <int N, int M, class F>
 Unscented<N, M> unscentedTransform(const Eigen::Matrix<double, N, 1>& mean, const Eigen::Matrix<double, N, N>& P,
-                                   F&& f, double kappa = 3.0 - N)
+                                   F&& f, double kappa = 3.0 - N, bool check_curvature = false)
 {
   Unscented<N, M> out;
   out.mean.setZero();
@@ -51,7 +56,7 @@ Unscented<N, M> unscentedTransform(const Eigen::Matrix<double, N, 1>& mean, cons
     }
     return y.col(2 * N);
   };
-  if (w_mean != 0.0)
+  if (w_mean != 0.0 || check_curvature)
     atMean();
   const double largest = eig.eigenvalues().cwiseAbs().maxCoeff();
   for (int i = 0; i < N; ++i)
@@ -66,6 +71,22 @@ Unscented<N, M> unscentedTransform(const Eigen::Matrix<double, N, 1>& mean, cons
     y.col(2 * i) = f(Eigen::Matrix<double, N, 1>(mean + step));
     y.col(2 * i + 1) = f(Eigen::Matrix<double, N, 1>(mean - step));
     out.evaluations += 2;
+  }
+  if (check_curvature)
+  {
+    Eigen::Matrix<double, M, 1> slope_max = Eigen::Matrix<double, M, 1>::Zero();
+    for (int i = 0; i < N; ++i)
+      slope_max = slope_max.cwiseMax((y.col(2 * i) - y.col(2 * i + 1)).cwiseAbs());
+    for (int i = 0; i < N; ++i)
+      for (int k = 0; k < M; ++k)
+      {
+        const double slope = std::abs(y(k, 2 * i) - y(k, 2 * i + 1));
+        const double bend = std::abs(y(k, 2 * i) + y(k, 2 * i + 1) - 2.0 * y(k, 2 * N));
+        if (slope > 0.0 && slope >= 0.1 * slope_max(k))
+          out.curvature = std::max(out.curvature, bend / slope);
+        else if (slope_max(k) > 0.0 && bend >= 0.1 * slope_max(k))
+          out.curvature = std::max(out.curvature, bend / slope_max(k));  // a kink with no slope along this axis
+      }
   }
   for (int j = 0; j < 2 * N; ++j)
     out.mean += w * y.col(j);
