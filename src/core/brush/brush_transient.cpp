@@ -122,9 +122,9 @@ bool BrushTransient::setParameters(const BrushParameters& parameters)
     allocate();
   else if (changes)
   {
-    // the bristles were deflected under other parameters: not the steady state of any inputs under these
+    // the bristles were deflected under other parameters: not the steady state of any inputs under these (the rows'
+    // steady field stays a valid control variate until it is re-evaluated: no jump at a retune)
     held_travel_ = 0.0;
-    rows_phi_ = NAN;
   }
   return lattice_changes;
 }
@@ -181,6 +181,7 @@ void BrushTransient::reset()
   omega_gamma_ = 0.0;
   have_last_kin_ = false;
   held_travel_ = 0.0;
+  fill_travel_ = 0.0;
   rows_active_ = false;
   rows_phi_ = NAN;
   const double a2 = p_.a * p_.a;
@@ -212,13 +213,15 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   const bool held = have_last_kin_ && sameInputs(kin, last_kin_);
   const double travel = kin.V_r.norm() * std::max(dt, 0.0);
   held_travel_ = held ? held_travel_ + travel : travel;
+  fill_travel_ += travel;
   last_kin_ = kin;
   have_last_kin_ = true;
   correctRows(kin, held, travel);
   // the rows' correction holds the streaks once every bristle in the patch entered under the inputs it is of
   const Slips now = computeSlips(kin, p_.standstill_speed);
   const bool corrected = rows_active_ && held_travel_ >= 2.0 * p_.a && now.defined &&
-                         rows_phi_ == now.phi && rows_sigma_ == RollingFrame(now.epsilon).toRolling(now.sigma);
+                         rows_phi_ == now.phi && rows_sigma_ == RollingFrame(now.epsilon).toRolling(now.sigma) &&
+                         rows_params_ == p_;
   streak_estimate_ = corrected ? 0.0 : streakBound(kin);
   const BrushForces g = forces();
   f.F_x = g.F_x;
@@ -365,11 +368,13 @@ void BrushTransient::correctRows(const ContactKinematics& kin, bool held, double
   const double y_first = frame.toRolling(position(0, 0)).y() / p_.a;
   const double spacing = frame.toRolling(R_ * (axis == 0 ? Eigen::Vector2d(0.0, h_) : Eigen::Vector2d(h_, 0.0))).y() / p_.a;
   const Eigen::Vector2d sigma = frame.toRolling(s.sigma);
-  const bool same = sigma == rows_sigma_ && s.phi == rows_phi_;
+  const bool same = sigma == rows_sigma_ && s.phi == rows_phi_ && rows_params_ == p_;
   const bool moved = !(std::abs(y_first - rows_y_first_) <= 1e-12 && std::abs(spacing - rows_spacing_) <= 1e-12) ||
                      frame.toPatch(Eigen::Vector2d(1.0, 0.0)) != Eigen::Vector2d(rows_c_, rows_s_);
   rows_travel_ += travel;
-  if (moved || (!same && (held || rows_travel_ >= p_.a)))
+  // re-evaluated where it moved; for other inputs or parameters only in a step that rolls (not at a duplicate stamp
+  // after a retune: no jump), once they held over it or a patch radius was rolled since
+  if (moved || (!same && travel > 0.0 && (held || rows_travel_ >= p_.a)))
   {
     BristleField field;
     if (!makeBristleField(p_, { sigma.x(), sigma.y() }, s.phi, 0.0, 0.0, field))
@@ -383,6 +388,7 @@ void BrushTransient::correctRows(const ContactKinematics& kin, bool held, double
     rows_ = evaluateSteadyRows(field, y_first, spacing, w_, tolerance / scale, BrushSteady::kMaxWork);
     rows_sigma_ = sigma;
     rows_phi_ = s.phi;
+    rows_params_ = p_;
     rows_y_first_ = y_first;
     rows_spacing_ = spacing;
     const Eigen::Vector2d e = frame.toPatch(Eigen::Vector2d(1.0, 0.0));
@@ -390,26 +396,32 @@ void BrushTransient::correctRows(const ContactKinematics& kin, bool held, double
     rows_s_ = e.y();
     rows_scale_ = p_.mu * p_.F_z * scale;
     rows_travel_ = 0.0;
-    // the same rows' exact integrals of q_z [N]: the strip of width spacing along the chord at y0
-    const double q0_a2 = peakFactor(p_.pressure) * p_.F_z / boost::math::double_constants::pi;  // q_z(0) a^2
-    std::fill(std::begin(rows_load_), std::end(rows_load_), 0.0);
-    for (int r = 0; r < w_; ++r)
-    {
-      const double y0 = y_first + r * spacing, c2 = 1.0 - y0 * y0;
-      if (!(c2 > 0.0))
-        continue;
-      const double c = std::sqrt(c2);
-      double strip = 2.0 * c;  // integral of q_z / q_z(0) along the chord, in units of a
-      if (p_.pressure == PressureDistribution::Parabolic)
-        strip = 4.0 / 3.0 * c2 * c;
-      else if (p_.pressure == PressureDistribution::Hertzian)
-        strip = 0.5 * boost::math::double_constants::pi * c2;
-      rows_load_[0] += q0_a2 * std::abs(spacing) * strip;
-      rows_load_[1 + (r & 1)] += 2.0 * q0_a2 * std::abs(spacing) * strip;
-    }
   }
   if (std::isnan(rows_phi_))
     return;
+  // the same rows' exact integrals of q_z [N] (the strip of width spacing along the chord at y0), always of the
+  // current parameters: the lattice's normalisation
+  const double q0_a2 = peakFactor(p_.pressure) * p_.F_z / boost::math::double_constants::pi;  // q_z(0) a^2
+  std::fill(std::begin(rows_load_), std::end(rows_load_), 0.0);
+  for (int r = 0; r < w_; ++r)
+  {
+    const double y0 = y_first + r * spacing, c2 = 1.0 - y0 * y0;
+    if (!(c2 > 0.0))
+      continue;
+    const double c = std::sqrt(c2);
+    double strip = 2.0 * c;  // integral of q_z / q_z(0) along the chord, in units of a
+    if (p_.pressure == PressureDistribution::Parabolic)
+      strip = 4.0 / 3.0 * c2 * c;
+    else if (p_.pressure == PressureDistribution::Hertzian)
+      strip = 0.5 * boost::math::double_constants::pi * c2;
+    rows_load_[0] += q0_a2 * std::abs(spacing) * strip;
+    rows_load_[1 + (r & 1)] += 2.0 * q0_a2 * std::abs(spacing) * strip;
+  }
+  // The correction is for the steady field; a lattice that has not yet rolled a transit holds mostly nothing (or the
+  // state it was reset to), where it would only add that field's quadrature error: it enters in proportion to the
+  // share of the longest path rolled since the lattice started, so that an empty patch gives exactly nothing and the
+  // forces stay continuous.
+  rows_weight_ = std::min(1.0, fill_travel_ / (2.0 * p_.a));
   row_axis_ = axis;
   rows_active_ = true;
 }
@@ -427,8 +439,9 @@ Eigen::Vector3d BrushTransient::rowCorrection(int k) const
   const std::complex<double> F = rows_.integral_force - rows_.rows_force[r];
   const double M = rows_.integral_moment - rows_.rows_moment[r];
   // rolling frame -> patch frame
-  const double F_x = rows_scale_ * F.real(), F_y = rows_scale_ * F.imag();
-  return { rows_c_ * F_x - rows_s_ * F_y, rows_s_ * F_x + rows_c_ * F_y, rows_scale_ * p_.a * M };
+  const double scale = rows_weight_ * rows_scale_;
+  const double F_x = scale * F.real(), F_y = scale * F.imag();
+  return { rows_c_ * F_x - rows_s_ * F_y, rows_s_ * F_x + rows_c_ * F_y, scale * p_.a * M };
 }
 
 void BrushTransient::recentre()
@@ -543,7 +556,7 @@ BrushForces BrushTransient::forces() const
   // error across the rows twice (0.1 % of mu F_z at resolution 128 with the uniform pressure). Without load, the
   // patch area over the bristle count.
   const auto weight = [&](int k) {
-    const double total = rows_active_ ? rows_load_[rowSet(k)] : p_.F_z;
+    const double total = rows_active_ ? rows_weight_ * rows_load_[rowSet(k)] + (1.0 - rows_weight_) * p_.F_z : p_.F_z;
     return load[k] > 0.0 ? total / load[k] : boost::math::double_constants::pi * p_.a * p_.a / std::max(count[k], 1);
   };
   const auto sum = [&](int k) {
@@ -575,7 +588,8 @@ BrushForces BrushTransient::forces() const
   const double scale = p_.mu * p_.F_z;
   f.error_estimate = streak_estimate_;
   if (rows_active_)
-    f.error_estimate += (rows_.integral_error + rows_.rows_error) * peakFactor(p_.pressure) / boost::math::double_constants::pi;
+    f.error_estimate += rows_weight_ * (rows_.integral_error + rows_.rows_error) * peakFactor(p_.pressure) /
+                        boost::math::double_constants::pi;
   const double fixed = f.error_estimate;
   if (scale > 0.0)
     for (int k = 1; k <= 4; ++k)

@@ -154,9 +154,12 @@ private:
   double rows_c_ = 1.0, rows_s_ = 0.0;  // the rolling direction in the patch frame
   double rows_scale_ = 0.0;        // dimensionless integrals -> [N]
   double rows_load_[3] = {};       // the rows' exact integrals of q_z [N] (all rows, even, odd)
+  BrushParameters rows_params_;    // the parameters rows_ was evaluated with
+  double rows_weight_ = 0.0;       // share of the correction in force: the share of a transit rolled since reset
   ContactKinematics last_kin_;     // the inputs of the last update, and how far the patch rolled under them
   bool have_last_kin_ = false;
   double held_travel_ = 0.0;
+  double fill_travel_ = 0.0;       // rolled since the lattice started
 };
 
 }  // namespace sphere_contact_estimator
