@@ -12,7 +12,7 @@ log "building the tests with ASan + UBSan in $B"
 cmake -S "$REPO" -B "$B" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS="$FLAGS" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
   -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" > "$B.configure.log" 2>&1 || { cat "$B.configure.log"; exit 1; }
-TESTS=(test_cylinder test_brush test_contact_estimator test_contact_eval)
+TESTS=(test_cylinder test_brush test_uncertainty test_contact_estimator test_contact_eval)
 # a failed build fails the job (the last good binaries must never be the ones tested)
 if ! make -C "$B" -j"$(nproc)" "${TESTS[@]}" > "$B.build.log" 2>&1; then
   grep -E "error|Error" "$B.build.log" | head -40
