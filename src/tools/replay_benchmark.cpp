@@ -1,0 +1,134 @@
+// replay_benchmark: bag_analyze's throughput on a bag of the size a fleet logs. Writes a bag of the demo manoeuvre at
+// 1 kHz, repeated to at least --messages odometry messages (with the odometry's orientation, its noise covariance and,
+// with --tf, the sphere's transform on /tf beside each message), then replays it through bag_analyze's own path
+// (analyzeBag: the node's estimator class, writing the output bag and the CSV) once per brush model, and prints JSON:
+// messages per second for each. The bag is generated, never committed, and removed afterwards unless --keep.
+//
+//   replay_benchmark [--messages 110000] [--models off linear steady transient auto] [--tf] [--bag PATH] [--keep]
+//
+// Run by scripts/benchmark.sh (docs/benchmarks.md, "Offline replay"); on one core of the machine.
+
+// STL
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+// CLI11
+#include <CLI/CLI.hpp>
+
+// ROS
+#include <nav_msgs/Odometry.h>
+#include <rosbag/bag.h>
+#include <tf2_msgs/TFMessage.h>
+
+// Package
+#include "sphere_contact_estimator/core/estimator/scenario.h"
+#include "sphere_contact_estimator/ros/bag_analyzer.h"
+
+namespace sce = sphere_contact_estimator;
+
+namespace
+{
+// The demo manoeuvre at 1 kHz, again and again, as a robot's odometry (and tf) would record it.
+std::size_t writeBag(const std::string& path, std::size_t messages, bool with_tf)
+{
+  const std::vector<sce::ScenarioSample> samples = sce::Scenario(sce::Scenario::defaultSegments(), 0.1).sample(1e-3);
+  rosbag::Bag bag(path, rosbag::bagmode::Write);
+  nav_msgs::Odometry o;
+  o.header.frame_id = "odom";
+  o.child_frame_id = "base_link";
+  o.twist.covariance[0] = o.twist.covariance[7] = 0.005 * 0.005;  // the demo's sensor noise
+  o.twist.covariance[21] = o.twist.covariance[28] = o.twist.covariance[35] = 0.02 * 0.02;
+  tf2_msgs::TFMessage tf;
+  tf.transforms.resize(1);
+  tf.transforms[0].header.frame_id = "odom";
+  tf.transforms[0].child_frame_id = "base_link";
+  std::size_t written = 0;
+  const double period = samples.back().time + 1e-3;
+  for (int lap = 0; written < messages; ++lap)
+    for (const sce::ScenarioSample& s : samples)
+    {
+      o.header.stamp = ros::Time(1000.0 + lap * period + s.time);
+      o.pose.pose.position.x = s.position.x();
+      o.pose.pose.position.y = s.position.y();
+      o.pose.pose.position.z = 0.1;
+      o.pose.pose.orientation.z = std::sin(0.5 * s.yaw);
+      o.pose.pose.orientation.w = std::cos(0.5 * s.yaw);
+      o.twist.twist.angular.x = s.omega_body.x();
+      o.twist.twist.angular.y = s.omega_body.y();
+      o.twist.twist.angular.z = s.omega_body.z();
+      o.twist.twist.linear.x = s.velocity_body.x();
+      o.twist.twist.linear.y = s.velocity_body.y();
+      bag.write("/odom", o.header.stamp, o);
+      if (with_tf)
+      {
+        geometry_msgs::TransformStamped& t = tf.transforms[0];
+        t.header.stamp = o.header.stamp;
+        t.transform.translation.x = o.pose.pose.position.x;
+        t.transform.translation.y = o.pose.pose.position.y;
+        t.transform.translation.z = o.pose.pose.position.z;
+        t.transform.rotation = o.pose.pose.orientation;
+        bag.write("/tf", o.header.stamp, tf);
+      }
+      if (++written == messages)
+        break;
+    }
+  return written;
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  CLI::App app{ "replay_benchmark: bag_analyze's throughput on a generated bag of at least --messages odometry messages" };
+  std::size_t messages = 110000;
+  std::vector<std::string> models = { "off", "linear", "steady", "transient", "auto" };
+  bool with_tf = false, keep = false;
+  std::string path = "/tmp/sphere_contact_estimator_replay_benchmark.bag";
+  app.add_option("--messages", messages, "odometry messages in the bag")->capture_default_str();
+  app.add_option("--models", models, "brush models to replay with")->capture_default_str();
+  app.add_flag("--tf", with_tf, "record the sphere's pose on /tf beside each message (the estimator then looks it up)");
+  app.add_option("--bag", path, "where to write the bag")->capture_default_str();
+  app.add_flag("--keep", keep, "keep the bag, the output bag and the CSV");
+  CLI11_PARSE(app, argc, argv);
+  const std::map<std::string, int> kinds = { { "off", 0 }, { "linear", 1 }, { "steady", 2 }, { "transient", 3 },
+                                             { "auto", 4 } };
+  ros::Time::init();
+  const std::size_t written = writeBag(path, messages, with_tf);
+  std::printf("{\"messages\": %zu, \"tf\": %s, \"replay\": [", written, with_tf ? "true" : "false");
+  bool first = true;
+  for (const std::string& name : models)
+  {
+    const auto kind = kinds.find(name);
+    if (kind == kinds.end())
+    {
+      std::fprintf(stderr, "replay_benchmark: unknown model %s\n", name.c_str());
+      return 2;
+    }
+    sce::BagAnalysisOptions o;
+    o.input = path;
+    o.output = path + ".out.bag";
+    o.csv = path + ".csv";
+    o.config.brush_model = kind->second;
+    const auto start = std::chrono::steady_clock::now();
+    const sce::BagAnalysisResult r = sce::analyzeBag(o);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("%s\n  {\"brush_model\": %d, \"name\": \"%s\", \"messages\": %llu, \"seconds\": %.3f, "
+                "\"messages_per_second\": %.0f}",
+                first ? "" : ",", kind->second, name.c_str(), static_cast<unsigned long long>(r.odometry), seconds,
+                r.odometry / seconds);
+    std::fflush(stdout);
+    first = false;
+    if (!keep)
+    {
+      std::remove(o.output.c_str());
+      std::remove(o.csv.c_str());
+    }
+  }
+  std::printf("\n]}\n");
+  if (!keep)
+    std::remove(path.c_str());
+  return 0;
+}
