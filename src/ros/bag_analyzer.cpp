@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <fstream>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <stdexcept>
 
@@ -56,6 +57,35 @@ std::string odometryTopic(rosbag::View& all, const std::string& requested)
   return *odometry.begin();
 }
 
+// rosbag::Bag's constructor and destructor load and unload its encryption plugin through class_loader, whose state
+// is global and unguarded: two bags made at once on two threads crashed (bag_analyze with several bags). Reading an
+// open bag touches none of it. Recursive: a bag that fails to open is deleted while the lock is held.
+std::recursive_mutex g_bag_lifetime;
+
+struct BagDeleter
+{
+  void operator()(rosbag::Bag* bag) const
+  {
+    std::lock_guard<std::recursive_mutex> lock(g_bag_lifetime);
+    delete bag;
+  }
+};
+
+std::unique_ptr<rosbag::Bag, BagDeleter> openBag(const std::string& path)
+{
+  std::lock_guard<std::recursive_mutex> lock(g_bag_lifetime);
+  std::unique_ptr<rosbag::Bag, BagDeleter> bag(new rosbag::Bag);
+  try
+  {
+    bag->open(path, rosbag::bagmode::Read);
+  }
+  catch (const rosbag::BagException& e)
+  {
+    throw std::runtime_error("cannot read bag " + path + ": " + e.what());
+  }
+  return bag;
+}
+
 void addTransforms(tf2::BufferCore& buffer, const tf2_msgs::TFMessage& msg, bool is_static)
 {
   for (const auto& t : msg.transforms)
@@ -76,15 +106,8 @@ BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<vo
   BagAnalysisResult result;
   OdometryEstimator estimator(o.config);  // throws std::invalid_argument for an invalid configuration
 
-  rosbag::Bag in;
-  try
-  {
-    in.open(o.input, rosbag::bagmode::Read);
-  }
-  catch (const rosbag::BagException& e)
-  {
-    throw std::runtime_error("cannot read bag " + o.input + ": " + e.what());
-  }
+  const auto bag = openBag(o.input);
+  rosbag::Bag& in = *bag;
   rosbag::View all(in);
   if (all.size() == 0)
     throw std::runtime_error("bag " + o.input + " is empty");

@@ -1,15 +1,23 @@
-// bag_analyze: a recorded run through the contact estimator, offline and as fast as the machine allows.
+// bag_analyze: recorded runs through the contact estimator, offline and as fast as the machine allows.
 // Reads a bag, runs the node's own estimator class (OdometryEstimator) with a parameter file and model,
 // writes an output bag with the node's topics beside the input's, and a CSV for scripts/plot_analysis.py;
-// ends with a summary of the run. Errors: a message on stderr and exit status 2 (CLI11's for usage).
+// ends with a summary of the run. Several bags (or directories of them) are analysed in parallel, one output bag and
+// CSV each in the --output and --csv folders, with a combined summary (summary.csv in the --csv folder and a table).
+// Errors: a message on stderr and exit status 2 (CLI11's for usage); with several bags, a bag that cannot be analysed
+// is named and skipped, the others finish, and the status is 1.
 //
 //   bag_analyze --input run.bag --output run_analysis.bag --csv run.csv [--params my.yaml] [--brush-model auto]
+//   bag_analyze --input A.bag B.bag DIR/ --output OUTDIR --csv OUTDIR [--jobs N]
 
 // STL
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <map>
+#include <mutex>
+#include <thread>
 
 // POSIX
 #include <unistd.h>
@@ -23,6 +31,7 @@
 
 // Package
 #include "sphere_contact_estimator/ros/bag_analyzer.h"
+#include "sphere_contact_estimator/ros/bag_batch.h"
 #include "sphere_contact_estimator/ros/config_file.h"
 
 namespace
@@ -70,9 +79,17 @@ int main(int argc, char** argv)
   const std::map<std::string, int> rr_models = { { "off", 0 }, { "exact", 1 }, { "expansion", 2 }, { "table", 3 } };
   std::string brush_model, rr_model, progress = "auto";
   bool estimates_only = false;
-  app.add_option("--input,-i", options.input, "bag to read")->required()->check(CLI::ExistingFile);
-  app.add_option("--output,-o", options.output, "bag to write: the estimate topics and the input topics");
-  app.add_option("--csv", options.csv, "CSV of every estimate (scripts/plot_analysis.py plots it)");
+  std::vector<std::string> inputs;
+  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  app.add_option("--input,-i", inputs, "bag to read; or several bags and directories of bags (*.bag), analysed in "
+                                       "parallel")->required()->expected(1, -1);
+  app.add_option("--output,-o", options.output, "bag to write: the estimate topics and the input topics (several "
+                                                "inputs: the folder for each <name>_analysis.bag)");
+  app.add_option("--csv", options.csv, "CSV of every estimate (scripts/plot_analysis.py plots it; several inputs: the "
+                                       "folder for each <name>.csv and summary.csv)");
+  app.add_option("--jobs,-j", jobs, "bags analysed at once, each on its own core (default: all cores)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_option("--params,-p", params,
                  "parameter file in the node's format (default: the package's config/contact_estimator.yaml, "
                  "as contact_estimator.launch loads it)");
@@ -119,6 +136,42 @@ int main(int argc, char** argv)
       options.config.rolling_resistance_model = rr_models.at(rr_model);
 
     ProgressBar bar(progress == "always" || (progress == "auto" && isatty(STDERR_FILENO)));
+    std::error_code ec;
+    const bool batch = inputs.size() > 1 || std::filesystem::is_directory(inputs.front(), ec);
+    if (batch)
+    {
+      // the set: one output bag and CSV per bag in the folders, the bags analysed in parallel, one progress bar
+      const std::vector<std::string> bags = sce::expandBagInputs(inputs);
+      for (const std::string* dir : { &options.output, &options.csv })
+        if (!dir->empty() && !std::filesystem::is_directory(*dir) && !std::filesystem::create_directories(*dir, ec))
+          throw std::runtime_error("cannot make the folder " + *dir + ": " + ec.message());
+      const std::vector<sce::BagJob> set = sce::makeBagJobs(bags, options.output, options.csv);
+      const auto start = std::chrono::steady_clock::now();
+      const std::vector<sce::BagJobResult> results = sce::analyzeBags(set, options, jobs, [&bar](double f) { bar(f); });
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::printf("bag_analyze: %zu bags, %d at a time, in %.3f s\n%s", results.size(), std::min<int>(jobs, results.size()),
+                  wall, sce::batchSummaryTable(results, wall).c_str());
+      if (!options.csv.empty())
+      {
+        const std::string path = (std::filesystem::path(options.csv) / "summary.csv").string();
+        std::ofstream summary(path);
+        sce::writeBatchSummaryCsv(summary, results, wall);
+        if (!summary.flush())
+          throw std::runtime_error("writing " + path + " failed");
+        std::printf("  summary               %s\n", path.c_str());
+      }
+      int failed = 0;
+      for (const sce::BagJobResult& r : results)
+        if (!r.ok)
+        {
+          ++failed;
+          std::cerr << "bag_analyze: skipped " << r.job.input << ": " << r.error << '\n';
+        }
+      return failed ? 1 : 0;
+    }
+    options.input = inputs.front();
+    if (!std::filesystem::is_regular_file(options.input, ec))
+      throw std::runtime_error("no such bag: " + options.input);
     const auto start = std::chrono::steady_clock::now();
     const sce::BagAnalysisResult r = sce::analyzeBag(options, [&bar](double f) { bar(f); });
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
