@@ -22,6 +22,7 @@ APT_PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libboost-math-dev nlohmann-json3-dev libcli11-dev libyaml-cpp-dev libtf2-msgs-dev libroslib-dev libstd-srvs-dev
   python3-matplotlib python3-yaml
+  rviz
 )
 
 log() { printf '\033[1m==> %s\033[0m\n' "$*" >&2; }

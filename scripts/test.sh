@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# README command 2: install, build, and run every test (gtest and rostest).
+# README command 2: install, build, and run every test (gtest and rostest), then the demo in RViz under Xvfb
+# (scripts/rviz_screenshot.sh: RViz subscribes to the contact's topics and draws them without errors).
 # Prints ctest's summary and exits non-zero on any failure.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
@@ -28,6 +29,8 @@ for path in glob.glob(sys.argv[1] + "/gtest-*.xml") + glob.glob(sys.argv[1] + "/
             passed += 1
 print("test cases: %d passed, %d failed, %d skipped" % (passed, failed, skipped))
 PY
+log "the demo in RViz (scripts/rviz_screenshot.sh)"
+"$REPO/scripts/rviz_screenshot.sh" "$WS/output/rviz_demo.png" || rc=1
 if [ "$rc" -ne 0 ]; then
   catkin_test_results --verbose "test_results/$PKG" | grep -E 'Summary|Failure|failure' | head -50 || true
   log "tests FAILED"

@@ -5,6 +5,7 @@
 #include <cmath>
 
 // Package
+#include "sphere_contact_estimator/ros/contact_markers.h"
 #include "sphere_contact_estimator/ros/parameter_text.h"
 
 namespace sphere_contact_estimator
@@ -137,69 +138,7 @@ void ContactEstimatorRos::odometryCallback(const nav_msgs::Odometry::ConstPtr& m
 
 void ContactEstimatorRos::publishMarkers(const ContactEstimateData& e, const std_msgs::Header& header)
 {
-  using visualization_msgs::Marker;
-  markers_.markers.resize(4);
-  const auto base = [&](Marker& m, int id, int type) {
-    m.header = header;
-    m.ns = "contact";
-    m.id = id;
-    m.type = type;
-    m.action = Marker::ADD;
-    m.pose.orientation.w = 1.0;
-    m.lifetime = ros::Duration(0.5);
-  };
-  const double a = std::max(e.patch_radius, 1e-3);
-  Marker& disc = markers_.markers[0];
-  base(disc, 0, Marker::CYLINDER);
-  disc.scale.x = disc.scale.y = 2.0 * a;
-  disc.scale.z = 1e-3;
-  disc.color.r = disc.color.g = disc.color.b = 0.6f;
-  disc.color.a = 0.5f;
-  // bristles, green where they adhere and red where they slide (transient or steady model)
-  Marker& zones = markers_.markers[1];
-  base(zones, 1, Marker::POINTS);
-  zones.scale.x = zones.scale.y = std::max(a / 20.0, 1e-4);
-  zones.points.clear();
-  zones.colors.clear();
-  estimator_.estimator().visitBristles([&](const Eigen::Vector2d& x, bool sliding) {
-      geometry_msgs::Point p;
-      p.x = x.x();
-      p.y = x.y();
-      p.z = 2e-3;
-      zones.points.push_back(p);
-      std_msgs::ColorRGBA c;
-      c.r = sliding ? 0.9f : 0.1f;
-      c.g = sliding ? 0.1f : 0.8f;
-      c.a = 1.0f;
-      zones.colors.push_back(c);
-    });
-  if (zones.points.empty())
-    zones.action = Marker::DELETE;
-  // force arrows, 1 m per mu F_z
-  const double scale = e.load > 0.0 ? 1.0 / e.load : 1.0;
-  for (int i = 0; i < 2; ++i)
-  {
-    Marker& arrow = markers_.markers[2 + i];
-    base(arrow, 2 + i, Marker::ARROW);
-    arrow.points.resize(2);
-    arrow.points[0] = geometry_msgs::Point();
-    arrow.points[1] = geometry_msgs::Point();
-    if (i == 0)
-    {
-      arrow.points[1].x = e.brush.F_x * scale;
-      arrow.points[1].y = e.brush.F_y * scale;
-      arrow.color.b = 1.0f;
-    }
-    else
-    {
-      arrow.points[1].x = -e.rolling_resistance_force * scale;
-      arrow.color.r = 1.0f;
-      arrow.color.g = 0.5f;
-    }
-    arrow.scale.x = 0.1 * a;
-    arrow.scale.y = 0.2 * a;
-    arrow.color.a = 1.0f;
-  }
+  fillContactMarkers(e, estimator_.estimator(), header, 0.5, markers_);
   marker_pub_.publish(markers_);
 }
 

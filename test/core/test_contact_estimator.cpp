@@ -281,17 +281,26 @@ TEST(ContactEstimator, BristlesForDrawing)
     ContactEstimator e(settings(model));
     for (int i = 0; i < 50; ++i)
       e.update(rolling(0.01 * i, 1.0, 0.8, 0.01, 0.02, 0.0));
-    int n = 0, sliding = 0;
-    double max_r = 0.0;
-    e.visitBristles([&](const Eigen::Vector2d& x, bool s) {
+    int n = 0, sliding = 0, over_bound = 0, under_bound = 0;
+    double max_r = 0.0, max_u = 0.0;
+    const BrushParameters& p = e.brushModel()->parameters();
+    e.visitBristles([&](const Eigen::Vector2d& x, const Eigen::Vector2d& u, bool s) {
       ++n;
       sliding += s;
       max_r = std::max(max_r, x.norm());
+      max_u = std::max(max_u, u.norm());
+      // the deflection within the friction bound mu q_z / k (eq. 37), on it where the bristle slides
+      const double bound = p.mu * p.qz(x.squaredNorm()) / p.k;
+      over_bound += u.norm() > 1.001 * bound + 1e-15;
+      under_bound += s && u.norm() < 0.95 * bound;
     });
     EXPECT_GT(n, 100);
     EXPECT_GT(sliding, 0);
     EXPECT_LT(sliding, n);
     EXPECT_LE(max_r, e.settings().patch_radius);
+    EXPECT_GT(max_u, 0.0);
+    EXPECT_EQ(over_bound, 0);
+    EXPECT_EQ(under_bound, 0);
   }
 }
 

@@ -75,9 +75,13 @@ void expectClose(const Eigen::Matrix<double, M, M>& got, const Eigen::Matrix<dou
       continue;
     EXPECT_NEAR(a(i) / b(i), 1.0, sd_tolerance) << where << ": sd of output " << i;
     for (int j = i + 1; j < M; ++j)
+    {
       if (b(j) > floor(j) && a(i) > 0.0 && a(j) > 0.0)
+      {
         EXPECT_NEAR(got(i, j) / (a(i) * a(j)), ref(i, j) / (b(i) * b(j)), corr_tolerance)
             << where << ": correlation " << i << "-" << j;
+      }
+    }
   }
 }
 

@@ -27,6 +27,7 @@
 #include "sphere_contact_estimator/ContactEstimatorConfig.h"
 #include "sphere_contact_estimator/core/estimator/contact_estimator.h"
 #include "sphere_contact_estimator/ros/config_settings.h"
+#include "sphere_contact_estimator/ros/contact_markers.h"
 #include "sphere_contact_estimator/ros/parameter_text.h"
 #include "wait_for.h"
 
@@ -445,13 +446,17 @@ TEST_F(EstimatorIo, MarkersWhileSubscribed)
   ASSERT_TRUE(waitFor([&] { return !markers.empty() && markers.back().markers.at(0).header.stamp == last; }, 10.0));
   std::lock_guard<std::mutex> lock(mutex_);
   const visualization_msgs::MarkerArray& m = markers.back();
-  ASSERT_EQ(m.markers.size(), 4u);
-  const visualization_msgs::Marker& zones = m.markers[1];
+  namespace cm = sphere_contact_estimator::contact_markers;
+  ASSERT_EQ(m.markers.size(), static_cast<std::size_t>(cm::kCount));
+  EXPECT_EQ(m.markers[0].header.frame_id, "contact_patch");
+  const visualization_msgs::Marker& zones = m.markers[cm::kBristles];
   EXPECT_EQ(zones.type, visualization_msgs::Marker::POINTS);
   EXPECT_GT(zones.points.size(), 100u);
   EXPECT_EQ(zones.points.size(), zones.colors.size());
-  EXPECT_EQ(m.markers[2].type, visualization_msgs::Marker::ARROW);
-  EXPECT_LT(m.markers[2].points[1].x, 0.0);  // the brush force opposes the sliding
+  EXPECT_EQ(m.markers[cm::kDeflections].points.size(), 2 * zones.points.size());
+  EXPECT_EQ(m.markers[cm::kFrictionCircle].type, visualization_msgs::Marker::LINE_STRIP);
+  EXPECT_EQ(m.markers[cm::kBrushForce].type, visualization_msgs::Marker::ARROW);
+  EXPECT_LT(m.markers[cm::kBrushForce].points[1].x, 0.0);  // the brush force opposes the sliding
   g_clock += 1.0;
 }
 

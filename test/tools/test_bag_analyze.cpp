@@ -345,7 +345,9 @@ TEST_F(BagAnalyze, TheOutputBagReadsBackInEveryTool)
     EXPECT_GE(m.getTime(), last);  // in time order across chunks
     last = m.getTime();
     if (m.getTopic() == "/contact_estimate")
+    {
       ASSERT_NE(m.instantiate<sce::ContactEstimate>(), nullptr);
+    }
   }
   EXPECT_EQ(counts["/contact_estimate"], static_cast<int>(r.estimates));
   EXPECT_EQ(counts["/wheel/odometry"], 3001);

@@ -136,7 +136,9 @@ void BrushSteady::visitBristles(const Slips& s, const BristleVisitor& visit) con
     return;
   const RollingFrame frame(s.epsilon);
   evaluate(frame.toRolling(s.sigma), s.phi, s.phi_gamma, s.phi_psi,
-           [&](const Eigen::Vector2d& x, const Eigen::Vector2d&, bool sliding) { visit(frame.toPatch(x), sliding); });
+           [&](const Eigen::Vector2d& x, const Eigen::Vector2d& u, bool sliding) {
+             visit(frame.toPatch(x), frame.toPatch(u), sliding);
+           });
 }
 
 }  // namespace sphere_contact_estimator

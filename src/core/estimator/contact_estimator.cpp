@@ -354,10 +354,12 @@ void ContactEstimator::propagateRollingResistanceCovariance(double speed, Contac
   c.mu_roll_variance = s.mu_roll_variance;
 }
 
-void ContactEstimator::visitBristles(const std::function<void(const Eigen::Vector2d& x, bool sliding)>& visit) const
+void ContactEstimator::visitBristles(const BristleVisitor& visit) const
 {
   if (brush_)
-    brush_->visitBristles([&visit](const Eigen::Vector2d& x, bool sliding) { visit(paper_frame::toRos(x), sliding); });
+    brush_->visitBristles([&visit](const Eigen::Vector2d& x, const Eigen::Vector2d& u, bool sliding) {
+      visit(paper_frame::toRos(x), paper_frame::toRos(u), sliding);
+    });
 }
 
 }  // namespace sphere_contact_estimator

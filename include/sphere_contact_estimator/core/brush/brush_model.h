@@ -64,9 +64,9 @@ public:
   /// The accuracy target the last answer was computed to: accuracy_target, or for auto below the noise the larger
   /// target the forces' spread allowed (a fraction of mu F_z).
   virtual double lastTarget() const { return p_.accuracy_target; }
-  /// Visits the bristles behind the last answer, for drawing: visit(position x [m], sliding), paper frame.
-  /// Models without a bristle field (linear), and every model at standstill without state, visit none.
-  using BristleVisitor = std::function<void(const Eigen::Vector2d& x, bool sliding)>;
+  /// Visits the bristles behind the last answer, for drawing: visit(position x [m], deflection u [m], sliding),
+  /// paper frame. Models without a bristle field (linear), and every model at standstill without state, visit none.
+  using BristleVisitor = std::function<void(const Eigen::Vector2d& x, const Eigen::Vector2d& u, bool sliding)>;
   virtual void visitBristles(const BristleVisitor& /*visit*/) const {}
 
   const BrushParameters& parameters() const { return p_; }

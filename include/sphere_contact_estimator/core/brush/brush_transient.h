@@ -77,7 +77,7 @@ public:
   int lastResolution() const override { return p_.resolution; }
   void visitBristles(const BristleVisitor& visit) const override
   {
-    forEachBristle([&](const Eigen::Vector2d& x, const Eigen::Vector2d&, bool sliding) { visit(x, sliding); });
+    forEachBristle(visit);
   }
 
   /// Forces of the current bristle state, without advancing.

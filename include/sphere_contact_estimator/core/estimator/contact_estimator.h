@@ -118,10 +118,11 @@ public:
   /// The brush model (null when off).
   const BrushModel* brushModel() const { return brush_.get(); }
 
-  /// Shows the bristles behind the last estimate to visit(x, sliding), x in the ROS contact frame [m]:
-  /// the transient model's lattice, or the steady model's field at the last slips (none for the linear
-  /// model, which has no zones, or when the slips were undefined).
-  void visitBristles(const std::function<void(const Eigen::Vector2d& x, bool sliding)>& visit) const;
+  /// Shows the bristles behind the last estimate to visit(x, u, sliding), position x and deflection u in the ROS
+  /// contact frame [m]: the transient model's lattice, or the steady model's field at the last slips (none for the
+  /// linear model, which has no zones, or when the slips were undefined).
+  using BristleVisitor = BrushModel::BristleVisitor;
+  void visitBristles(const BristleVisitor& visit) const;
 
   /// Heading changes larger than this between two messages re-initialise the frame instead of counting
   /// as a turn rate [rad].
