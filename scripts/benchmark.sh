@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Speed and accuracy of every model: Google Benchmark timings, the accuracy program over random operating
 # points, the auto model along the demo bag (before: bench/demo_bag_before.json, measured on the release before
-# issue 11), joined into docs/benchmarks.md and docs/figures/pareto.png (commit both).
+# issue 11), the node over roscpp and bag_analyze's replay path, joined into docs/benchmarks.md and docs/figures/pareto.png (commit both).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
@@ -13,7 +13,7 @@ default_brush_model() {
   case "$m" in off) echo 0 ;; linear) echo 1 ;; steady) echo 2 ;; transient) echo 3 ;; auto) echo 4 ;; *) echo "$m" ;; esac
 }
 install_deps
-build bench_models model_accuracy node_benchmark contact_estimator_node bag_analyze
+build bench_models model_accuracy node_benchmark contact_estimator_node bag_analyze replay_benchmark
 mkdir -p "$OUT"
 BIN="$WS/devel/lib/$PKG"
 log "timing (Google Benchmark, 3 repetitions, medians)"
@@ -38,6 +38,11 @@ NODE=$!
 taskset -c 0 "$BIN/node_benchmark" _duration:=2.0 > "$OUT/node.json"
 kill $NODE $ROSCORE 2>/dev/null || true
 wait 2>/dev/null || true
+log "bag_analyze's replay path on a generated bag of 1.1e5 odometry messages, one core (about 3 minutes)"
+taskset -c 0 "$BIN/replay_benchmark" > "$OUT/replay.json"
+taskset -c 0 "$BIN/replay_benchmark" --tf --models off linear steady > "$OUT/replay_tf.json"
+taskset -c 0 "$BIN/replay_benchmark" --writers > "$OUT/writers.json"
 /usr/bin/python3 "$REPO/scripts/benchmark_report.py" --bench "$OUT/bench.json" --accuracy "$OUT/accuracy.json" \
   --node "$OUT/node.json" --bag "$OUT/bag.json" --default-brush-model "$(default_brush_model)" \
+  --replay "$OUT/replay.json" "$OUT/replay_tf.json" "$OUT/writers.json" --replay-profile "$REPO/bench/replay_profile.md" \
   --docs "$REPO/docs"

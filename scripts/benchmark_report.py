@@ -5,7 +5,8 @@ tables docs/benchmarks.md and the Pareto plot docs/figures/pareto.png.
 Usage: benchmark_report.py --bench BENCH.json --accuracy ACCURACY.json --docs DOCS_DIR
                            [--node NODE.json] [--bag BAG.json] [--default-brush-model 1..4]
 
---node is node_benchmark's output (the node over roscpp and the bag replay); --bag is the analysis of the noisy demo
+--replay is replay_benchmark's output (odometry only, then with --tf), --replay-profile the write-up of where its time
+went; --node is node_benchmark's output (the node over roscpp and the bag replay); --bag is the analysis of the noisy demo
 bag by the previous and the current auto model ({"targets": [{"target", "before": {"linear", "steady", "transient",
 "max_error"}, "after": {...}}], "reference", "messages"}). Errors are max(|dF_x|, |dF_y|, |dM_z| / a) / (mu F_z).
 """
@@ -446,7 +447,9 @@ def node_section(node):
              "`contact_estimator_node` with config/contact_estimator.yaml (a 5 kg robot), pinned to one core (taskset),"
              " fed over roscpp on loopback by `node_benchmark` on the other core. Odometry is published at each rate"
              " for 2 s; a rate is sustained when every message is answered and the p99 latency from the odometry stamp"
-             " to the estimate's arrival stays below 20 ms (no backlog building up).",
+             " to the estimate's arrival stays below 20 ms (no backlog building up). The odometry has no twist"
+             " covariance. Where a model's cost per message is near the period, the highest sustained rate can differ"
+             " by one step between runs on these shared machines (seen: transient at 10 and 5 kHz in two runs).",
              "", "| brush model | highest sustained rate | p50 latency | p99 latency | rates tried (received/sent) |",
              "|---|---|---|---|---|"]
     for r in node["node"]:
@@ -454,11 +457,51 @@ def node_section(node):
         lines.append("| %s | %d Hz | %.2f ms | %.2f ms | %s |" % (BRUSH_MODELS.get(r["brush_model"], r["brush_model"]),
                      r["max_rate"], 1e3 * r["p50"], 1e3 * r["p99"], tried))
     lines += ["", "Offline replay of a bag (the demo manoeuvre at 1 kHz, 11 001 odometry messages) by bag_analyze's"
-              " own path (analyzeBag: the node's estimator class, writing the output bag and the CSV):", "",
+              " own path (analyzeBag: the node's estimator class, writing the output bag and the CSV), without a twist covariance"
+              " (no uncertainty to carry: the models alone; with it, the next section):", "",
               "| brush model | messages per second |", "|---|---|"]
     for r in node["replay"]:
         lines.append("| %s | %.0f |" % (BRUSH_MODELS.get(r["brush_model"], r["brush_model"]), r["messages_per_second"]))
     lines.append("")
+    return lines
+
+
+def replay_section(replays, profile):
+    """bag_analyze at scale: replay_benchmark's runs (odometry only, and with /tf beside each message), and the
+    profile of the replay path before and after issue 14 (bench/replay_profile.md, measured once, by hand)."""
+    lines = ["## Offline replay at scale (bag_analyze)", "",
+             "`replay_benchmark` writes a bag of the demo manoeuvre at 1 kHz, repeated to %d odometry messages (the"
+             " odometry's orientation and noise covariance; in the second run the sphere's pose on /tf beside each"
+             " message, which the estimator then looks up), and replays it through bag_analyze's own path (analyzeBag:"
+             " the node's estimator class, writing the output bag and the CSV), one core (taskset). The estimator's"
+             " own rate is the messages over the time spent in its update() (the models and their uncertainty, with"
+             " the covariance propagated as by default): the most a replay could reach with that model."
+             % replays[0]["messages"], "",
+             "| brush model | replay, odometry only | replay, odometry and /tf | estimator alone | replay / estimator alone |",
+             "|---|---|---|---|---|"]
+    writers = [w for run in replays for w in run.get("writers", [])]
+    replays = [run for run in replays if "replay" in run]
+    with_tf = {}
+    for run in replays[1:]:
+        for r in run["replay"]:
+            with_tf[r["brush_model"]] = r
+    for r in replays[0]["replay"]:
+        t = with_tf.get(r["brush_model"])
+        own = r.get("estimator_messages_per_second", 0)
+        lines.append("| %s | %.0f msgs/s (%.1f µs each) | %s | %s | %s |" % (
+            r["name"], r["messages_per_second"], 1e6 / r["messages_per_second"],
+            "%.0f msgs/s" % t["messages_per_second"] if t else "-",
+            "%.0f msgs/s (%.1f µs each)" % (own, 1e6 / own) if own else "-",
+            "%.2f" % (r["messages_per_second"] / own) if own else "-"))
+    lines += [""]
+    if profile:
+        lines += profile + [""]
+    if writers:
+        lines += ["| writer (10⁵ odometry messages) | µs per message |", "|---|---|"]
+        for w in writers:
+            lines.append("| `%s` | %.2f |" % (w["name"], w["us_per_message"]))
+        lines += ["", "rosbag::Bag::write / BagWriter::write: %.0f×." % (
+            writers[0]["us_per_message"] / writers[-1]["us_per_message"]), ""]
     return lines
 
 
@@ -646,6 +689,8 @@ def main():
     ap.add_argument("--accuracy", required=True)
     ap.add_argument("--node", help="node_benchmark output")
     ap.add_argument("--bag", help="analysis of the noisy demo bag by the previous and the current auto model")
+    ap.add_argument("--replay", nargs="+", help="replay_benchmark outputs: odometry only, then with --tf, then --writers")
+    ap.add_argument("--replay-profile", help="markdown: where the replay's time went (bench/replay_profile.md)")
     ap.add_argument("--default-brush-model", type=int, default=4, choices=sorted(BRUSH_MODELS),
                     help="the node's default brush_model (1 linear, 2 steady, 3 transient, 4 auto), for the node"
                     " target")
@@ -683,6 +728,16 @@ def main():
     lines += cylinder_section(acc, times)
     if node:
         lines += node_section(node)
+    if a.replay:
+        replays = []
+        for path in a.replay:
+            with open(path) as f:
+                replays.append(json.load(f))
+        profile = None
+        if a.replay_profile:
+            with open(a.replay_profile) as f:
+                profile = f.read().rstrip("\n").split("\n")
+        lines += replay_section(replays, profile)
     if bag:
         lines += bag_section(bag)
     lines += targets_section(acc, times, g, node, a.default_brush_model)

@@ -11,7 +11,7 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
-APT_PACKAGES+=(xvfb python3-pil libgl1-mesa-dri)  # the last: software OpenGL (llvmpipe)
+APT_PACKAGES+=(xvfb xfonts-base python3-pil libgl1-mesa-dri)  # fonts: Xvfb's "fixed"; mesa: software OpenGL
 install_deps
 build
 OUT="$(realpath -m "${1:-$WS/output/rviz_demo.png}")"

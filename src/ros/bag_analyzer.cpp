@@ -206,6 +206,7 @@ BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<vo
     if (!e)
       continue;
     ++result.estimates;
+    result.compute_seconds += e->data->compute_time;
     result.summary.add(*e->data);
     if (out)
     {

@@ -78,7 +78,7 @@ int main(int argc, char** argv)
                                                     { "auto", 4 } };
   const std::map<std::string, int> rr_models = { { "off", 0 }, { "exact", 1 }, { "expansion", 2 }, { "table", 3 } };
   std::string brush_model, rr_model, progress = "auto";
-  bool estimates_only = false;
+  bool estimates_only = false, as_set = false;
   std::vector<std::string> inputs;
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   app.add_option("--input,-i", inputs, "bag to read; or several bags and directories of bags (*.bag), analysed in "
@@ -87,6 +87,8 @@ int main(int argc, char** argv)
                                                 "inputs: the folder for each <name>_analysis.bag)");
   app.add_option("--csv", options.csv, "CSV of every estimate (scripts/plot_analysis.py plots it; several inputs: the "
                                        "folder for each <name>.csv and summary.csv)");
+  app.add_flag("--set-of-bags", as_set, "treat the input as a set even when it is one bag: --output and --csv name "
+                                        "folders, and summary.csv is written (scripts that shard a list of bags)");
   app.add_option("--jobs,-j", jobs, "bags analysed at once, each on its own core (default: all cores)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -137,7 +139,7 @@ int main(int argc, char** argv)
 
     ProgressBar bar(progress == "always" || (progress == "auto" && isatty(STDERR_FILENO)));
     std::error_code ec;
-    const bool batch = inputs.size() > 1 || std::filesystem::is_directory(inputs.front(), ec);
+    const bool batch = as_set || inputs.size() > 1 || std::filesystem::is_directory(inputs.front(), ec);
     if (batch)
     {
       // the set: one output bag and CSV per bag in the folders, the bags analysed in parallel, one progress bar

@@ -2,9 +2,12 @@
 // 1 kHz, repeated to at least --messages odometry messages (with the odometry's orientation, its noise covariance and,
 // with --tf, the sphere's transform on /tf beside each message), then replays it through bag_analyze's own path
 // (analyzeBag: the node's estimator class, writing the output bag and the CSV) once per brush model, and prints JSON:
-// messages per second for each. The bag is generated, never committed, and removed afterwards unless --keep.
+// messages per second for each, and the estimator's own rate (messages over the time spent in its update(): the
+// models and their uncertainty), the bound a replay can reach. The bag is generated, never committed, and removed afterwards unless --keep.
 //
 //   replay_benchmark [--messages 110000] [--models off linear steady transient auto] [--tf] [--bag PATH] [--keep]
+//   replay_benchmark --writers [--messages N]   rosbag::Bag::write against BagWriter: the same odometry messages
+//                                              written by each, microseconds per message
 //
 // Run by scripts/benchmark.sh (docs/benchmarks.md, "Offline replay"); on one core of the machine.
 
@@ -27,6 +30,7 @@
 // Package
 #include "sphere_contact_estimator/core/estimator/scenario.h"
 #include "sphere_contact_estimator/ros/bag_analyzer.h"
+#include "sphere_contact_estimator/ros/bag_writer.h"
 
 namespace sce = sphere_contact_estimator;
 
@@ -78,6 +82,40 @@ std::size_t writeBag(const std::string& path, std::size_t messages, bool with_tf
     }
   return written;
 }
+// Seconds to write n odometry messages with W (rosbag::Bag or BagWriter) to path.
+template <class W>
+double writeTime(W& bag, std::size_t n)
+{
+  nav_msgs::Odometry o;
+  o.header.frame_id = "odom";
+  o.child_frame_id = "base_link";
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    o.header.stamp = ros::Time(1000.0 + 1e-3 * static_cast<double>(i));
+    bag.write("/odom", o.header.stamp, o);
+  }
+  bag.close();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+int compareWriters(const std::string& path, std::size_t n)
+{
+  double rosbag_seconds = 0.0, ours_seconds = 0.0;
+  {
+    rosbag::Bag bag(path, rosbag::bagmode::Write);
+    rosbag_seconds = writeTime(bag, n);
+  }
+  {
+    sce::BagWriter bag(path);
+    ours_seconds = writeTime(bag, n);
+  }
+  std::remove(path.c_str());
+  std::printf("{\"messages\": %zu, \"writers\": [\n  {\"name\": \"rosbag::Bag::write\", \"us_per_message\": %.3f},\n"
+              "  {\"name\": \"BagWriter::write\", \"us_per_message\": %.3f}\n]}\n",
+              n, 1e6 * rosbag_seconds / static_cast<double>(n), 1e6 * ours_seconds / static_cast<double>(n));
+  return 0;
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -85,14 +123,20 @@ int main(int argc, char** argv)
   CLI::App app{ "replay_benchmark: bag_analyze's throughput on a generated bag of at least --messages odometry messages" };
   std::size_t messages = 110000;
   std::vector<std::string> models = { "off", "linear", "steady", "transient", "auto" };
-  bool with_tf = false, keep = false;
+  bool with_tf = false, keep = false, writers = false;
   std::string path = "/tmp/sphere_contact_estimator_replay_benchmark.bag";
   app.add_option("--messages", messages, "odometry messages in the bag")->capture_default_str();
   app.add_option("--models", models, "brush models to replay with")->capture_default_str();
   app.add_flag("--tf", with_tf, "record the sphere's pose on /tf beside each message (the estimator then looks it up)");
   app.add_option("--bag", path, "where to write the bag")->capture_default_str();
   app.add_flag("--keep", keep, "keep the bag, the output bag and the CSV");
+  app.add_flag("--writers", writers, "only time rosbag::Bag::write against BagWriter on --messages odometry messages");
   CLI11_PARSE(app, argc, argv);
+  if (writers)
+  {
+    ros::Time::init();
+    return compareWriters(path, messages);
+  }
   const std::map<std::string, int> kinds = { { "off", 0 }, { "linear", 1 }, { "steady", 2 }, { "transient", 3 },
                                              { "auto", 4 } };
   ros::Time::init();
@@ -116,9 +160,10 @@ int main(int argc, char** argv)
     const sce::BagAnalysisResult r = sce::analyzeBag(o);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("%s\n  {\"brush_model\": %d, \"name\": \"%s\", \"messages\": %llu, \"seconds\": %.3f, "
-                "\"messages_per_second\": %.0f}",
+                "\"messages_per_second\": %.0f, \"estimator_seconds\": %.3f, \"estimator_messages_per_second\": %.0f}",
                 first ? "" : ",", kind->second, name.c_str(), static_cast<unsigned long long>(r.odometry), seconds,
-                r.odometry / seconds);
+                r.odometry / seconds, r.compute_seconds,
+                r.compute_seconds > 0.0 ? r.odometry / r.compute_seconds : 0.0);
     std::fflush(stdout);
     first = false;
     if (!keep)

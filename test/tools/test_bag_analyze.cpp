@@ -325,6 +325,14 @@ TEST_F(BagAnalyze, ManyBagsInParallel)
   r = runCommand(tool + " -i " + a + " /nonexistent_dir/ -p " + params);
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("no such bag or directory"), std::string::npos) << r.err;
+  // a share of one bag, as a script that splits a list hands it out: folders and summary.csv all the same
+  const std::string one = kDir + "/set_one";
+  std::system(("rm -rf " + one).c_str());
+  r = runCommand(tool + " --set-of-bags -i " + c + " -o " + one + " --csv " + one + " -p " + params);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(std::ifstream(one + "/c_analysis.bag").good());
+  EXPECT_TRUE(std::ifstream(one + "/c.csv").good());
+  EXPECT_NE(slurp(one + "/summary.csv").find("\ntotal,1 of 1 ok,101,"), std::string::npos) << slurp(one + "/summary.csv");
 }
 
 TEST_F(BagAnalyze, TheOutputBagReadsBackInEveryTool)

@@ -35,6 +35,7 @@ struct BagAnalysisResult
   std::uint64_t copied = 0;         ///< input messages copied to the output
   std::vector<std::string> replaced_topics;  ///< input topics the estimates replace (a bag recorded live)
   double bag_seconds = 0.0;         ///< span of the bag time analysed [s]
+  double compute_seconds = 0.0;     ///< wall time in the estimator's update() (the models, their uncertainty) [s]
   RunSummary summary;
 };
 
