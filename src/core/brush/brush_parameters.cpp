@@ -34,6 +34,34 @@ const char* toString(PressureDistribution pressure)
   return "unknown";
 }
 
+std::optional<PressureDistribution> parsePressureDistribution(std::string_view name)
+{
+  for (auto pressure : { PressureDistribution::Parabolic, PressureDistribution::Hertzian, PressureDistribution::Uniform })
+    if (name == toString(pressure))
+      return pressure;
+  return std::nullopt;
+}
+
+const char* toString(SlidingLaw law)
+{
+  switch (law)
+  {
+    case SlidingLaw::Coulomb:
+      return "coulomb";
+    case SlidingLaw::Rigid:
+      return "rigid";
+  }
+  return "unknown";
+}
+
+std::optional<SlidingLaw> parseSlidingLaw(std::string_view name)
+{
+  for (auto law : { SlidingLaw::Coulomb, SlidingLaw::Rigid })
+    if (name == toString(law))
+      return law;
+  return std::nullopt;
+}
+
 double peakFactor(PressureDistribution pressure)
 {
   switch (pressure)
@@ -85,6 +113,7 @@ double BrushParameters::qz(double r2) const
 bool operator==(const BrushParameters& a, const BrushParameters& b)
 {
   return a.a == b.a && a.k == b.k && a.F_z == b.F_z && a.mu == b.mu && a.pressure == b.pressure && a.tilt == b.tilt &&
+         a.sliding_law == b.sliding_law &&
          a.resolution == b.resolution && a.standstill_speed == b.standstill_speed &&
          a.accuracy_target == b.accuracy_target && a.auto_noise_fraction == b.auto_noise_fraction;
 }

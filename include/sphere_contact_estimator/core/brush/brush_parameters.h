@@ -1,5 +1,10 @@
 #pragma once
 
+// STL
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
 namespace sphere_contact_estimator
 {
 /// Vertical pressure distribution q_z over the circular patch; each integrates to F_z.
@@ -11,6 +16,25 @@ enum class PressureDistribution
 };
 
 const char* toString(PressureDistribution pressure);
+/// Parses "parabolic", "hertzian" or "uniform".
+std::optional<PressureDistribution> parsePressureDistribution(std::string_view name);
+
+/// The direction of a sliding bristle's stress (docs/conventions.md, "Forces"); the numbers are those of the node's
+/// sliding_law parameter.
+enum class SlidingLaw : std::uint8_t
+{
+  /// Romano et al. eq. (4b) as written: the stress opposes the bristle tip's full micro-sliding velocity of eq. (1),
+  /// which includes the bristle's own motion. A sliding bristle stays on the bound and turns towards the drive no
+  /// faster than its tip moves: continuous in the inputs, also at standstill.
+  Coulomb = 0,
+  /// The approximation of Sect. 6 ("neglecting the contribution of u_t"), used for the paper's Fig. 4: the stress
+  /// along the rigid sliding field sigma + A_phi x (in time -V_s - A_omega_z x), discontinuous where that vanishes.
+  Rigid = 1,
+};
+
+const char* toString(SlidingLaw law);
+/// Parses "coulomb" or "rigid".
+std::optional<SlidingLaw> parseSlidingLaw(std::string_view name);
 
 /// q_z at the centre over the mean pressure F_z / (pi a^2): 2 (parabolic), 1.5 (Hertzian), 1 (uniform).
 double peakFactor(PressureDistribution pressure);
@@ -27,6 +51,7 @@ struct BrushParameters
   /// turn coupling chi_psi A_phi u of eq. 32 is kept. Off: Sect. 3, straight paths, chi_psi u
   /// neglected as the paper does there.
   bool tilt = false;
+  SlidingLaw sliding_law = SlidingLaw::Coulomb;  ///< direction of a sliding bristle's stress
   int resolution = 32;    ///< transient: lattice spacings across 2a (the steady model follows accuracy_target)
   double standstill_speed = 1.0e-3;  ///< V_r below which the slip form is not used [m/s]
   double accuracy_target = 0.01;     ///< BrushSteady: its error bound; BrushAuto: largest error; of mu F_z
