@@ -155,12 +155,8 @@ void runBrushCommand(const BrushOptions& o, std::ostream& out)
   for (double x : o.covariance)
     requireFinite(x, "--covariance");
   BrushParameters p = o.parameters;
-  if (o.pressure == "parabolic")
-    p.pressure = PressureDistribution::Parabolic;
-  else if (o.pressure == "hertzian")
-    p.pressure = PressureDistribution::Hertzian;
-  else if (o.pressure == "uniform")
-    p.pressure = PressureDistribution::Uniform;
+  if (const auto pressure = parsePressureDistribution(o.pressure))
+    p.pressure = *pressure;
   else
     throw std::invalid_argument("unknown --pressure '" + o.pressure + "': use parabolic, hertzian or uniform");
   if (o.patch_radius)

@@ -1,4 +1,5 @@
 #include "sphere_contact_estimator/core/brush/brush_parameters.h"
+#include "sphere_contact_estimator/core/brush/pressure_law.h"
 #include "sphere_contact_estimator/core/numerics/parameter_check.h"
 
 // STL
@@ -64,16 +65,7 @@ std::optional<SlidingLaw> parseSlidingLaw(std::string_view name)
 
 double peakFactor(PressureDistribution pressure)
 {
-  switch (pressure)
-  {
-    case PressureDistribution::Parabolic:
-      return 2.0;
-    case PressureDistribution::Hertzian:
-      return 1.5;
-    case PressureDistribution::Uniform:
-      return 1.0;
-  }
-  return 1.0;
+  return PressureLaw(pressure).peakFactor();
 }
 
 void BrushParameters::validate() const
@@ -94,20 +86,8 @@ void BrushParameters::validate() const
 
 double BrushParameters::qz(double r2) const
 {
-  const double t = 1.0 - r2 / (a * a);
-  if (t <= 0.0)
-    return 0.0;
-  const double peak = peakFactor(pressure) * F_z / (pi * a * a);
-  switch (pressure)
-  {
-    case PressureDistribution::Parabolic:
-      return peak * t;
-    case PressureDistribution::Hertzian:
-      return peak * std::sqrt(t);
-    case PressureDistribution::Uniform:
-      return peak;
-  }
-  return 0.0;
+  const PressureLaw law(pressure);
+  return law.peakFactor() * F_z / (pi * a * a) * law.shape(1.0 - r2 / (a * a));
 }
 
 bool operator==(const BrushParameters& a, const BrushParameters& b)

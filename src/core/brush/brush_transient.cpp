@@ -408,12 +408,7 @@ void BrushTransient::correctRows(const ContactKinematics& kin, bool held, double
     const double y0 = y_first + r * spacing, c2 = 1.0 - y0 * y0;
     if (!(c2 > 0.0))
       continue;
-    const double c = std::sqrt(c2);
-    double strip = 2.0 * c;  // integral of q_z / q_z(0) along the chord, in units of a
-    if (p_.pressure == PressureDistribution::Parabolic)
-      strip = 4.0 / 3.0 * c2 * c;
-    else if (p_.pressure == PressureDistribution::Hertzian)
-      strip = 0.5 * boost::math::double_constants::pi * c2;
+    const double strip = PressureLaw(p_.pressure).chordIntegral(std::sqrt(c2));  // of q_z / q_z(0), units of a
     rows_load_[0] += q0_a2 * std::abs(spacing) * strip;
     rows_load_[1 + (r & 1)] += 2.0 * q0_a2 * std::abs(spacing) * strip;
   }

@@ -312,8 +312,8 @@ private:
   // margins' interpolant change sign between them? Then returns where it is furthest on the other side.
   bool hiddenChange(const std::array<Sample, kMaxSamples>& s, double& probe) const
   {
-    if (f_.pressure != PressureDistribution::Uniform)
-      return false;
+    if (f_.pressure.vanishesAtRim())
+      return false;  // only the uniform pressure's onset can leave through the trailing edge
     const numerics::GaussKronrod15& rule = numerics::gaussKronrod15();
     static const std::array<double, 15> weights = [] {  // barycentric weights of the nodes
       const numerics::GaussKronrod15& r = numerics::gaussKronrod15();
@@ -411,7 +411,7 @@ int structureBreakpoints(const BristleField& field, double* theta, int max_count
   const bool pole = polePath(field, theta_p);
   if (pole)
     add(theta_p);
-  if (field.pressure == PressureDistribution::Uniform)
+  if (!field.pressure.vanishesAtRim())
     return n;
   const auto peak = [&](double t) { return reAdhesionPeak(field, BristlePath::across(field, t)); };
   const auto count = [&](double t) { return reAdhesionCount(field, BristlePath::across(field, t)); };
@@ -420,12 +420,14 @@ int structureBreakpoints(const BristleField& field, double* theta, int max_count
   // margin along a path changes sign there (regula falsi); with the Hertzian pressure G also holds a band
   // along the whole leading edge, so the number of G stretches along the path tells, located by bisection.
   // Doubling steps out from the pole's path find the first change on each side.
-  if (pole && field.pole().real() > 0.0)
+  // (The rigid law's: under eq. 4b a sliding bristle re-adheres where its own sliding speed vanishes, which depends
+  // on its history, not on a region fixed in the plane.)
+  if (pole && field.pole().real() > 0.0 && field.law == SlidingLaw::Rigid)
     for (int side = -1; side <= 1; side += 2)
     {
       const double edge = side * half_pi;
       const int c0 = count(theta_p);
-      const bool conic = field.pressure == PressureDistribution::Parabolic;
+      const bool conic = field.pressure.squaredExponent() == 2;
       if (conic && peak(theta_p) < 0.0)
         break;
       double inside = theta_p, step = 1e-4, outside = NAN;
@@ -455,9 +457,10 @@ int structureBreakpoints(const BristleField& field, double* theta, int max_count
         add(0.5 * (inside + outside));
       }
     }
-  // G meeting the leading edge (parabolic pressure; the Hertzian's G holds the whole front edge): the margin
-  // on the edge z = e^{i psi} is a quartic in t = tan(psi / 2) after multiplying by (1 + t^2)^2
-  if (field.pressure == PressureDistribution::Parabolic)
+  // G meeting the leading edge (parabolic pressure; the Hertzian's G holds the whole front edge), where under
+  // either law a bristle entering the patch starts to adhere or to slide: the margin on the edge z = e^{i psi} is a
+  // quartic in t = tan(psi / 2) after multiplying by (1 + t^2)^2
+  if (field.pressure.squaredExponent() == 2)
   {
     const double sx = field.sigma.real(), sy = field.sigma.imag(), ph = field.phi;
     const double S = std::norm(field.sigma) + ph * ph;

@@ -8,6 +8,7 @@
 
 // Package
 #include "sphere_contact_estimator/core/brush/brush_parameters.h"
+#include "sphere_contact_estimator/core/brush/pressure_law.h"
 
 namespace sphere_contact_estimator
 {
@@ -19,15 +20,17 @@ namespace sphere_contact_estimator
 /// Along a characteristic the root moves as dz/dtau = -1 + i omega z (eqs. 15b, 35b: a straight line, or a
 /// circle about the tilting centre (0, -1/omega)), and an adhering bristle as du/dtau = w(z) + i kappa u
 /// (eqs. 11, 32) with the drive w(z) = sigma + i phi z, starting undeformed at the leading edge (eq. 8).
-/// Limited friction (eq. 4): |u| <= f(r^2); a sliding bristle has |u| = f along the rigid sliding field,
-/// u = f w / |w| (Sect. 6).
+/// Limited friction (eq. 4): |u| <= f(r^2); a sliding bristle has |u| = f, its direction set by the sliding law:
+/// eq. (4b) with the full micro-sliding velocity (SlidingLaw::Coulomb), or along the rigid sliding field,
+/// u = f w / |w| (Sect. 6, SlidingLaw::Rigid).
 struct BristleField
 {
   std::complex<double> sigma;  ///< slip sigma / beta, beta = mu q_z(0) / (k a) [-]
   double phi = 0.0;            ///< spin phi a / beta [-]
   double kappa = 0.0;          ///< turn coupling phi_psi a of eq. 32 (0 in the Sect. 3 formulation) [-]
   double omega = 0.0;          ///< turn of the roots per unit travel, -phi_gamma a (eq. 39b); 0: straight paths
-  PressureDistribution pressure = PressureDistribution::Parabolic;
+  PressureLaw pressure{ PressureDistribution::Parabolic };
+  SlidingLaw law = SlidingLaw::Coulomb;
 
   /// The drive w(z) = sigma + i phi z, which is also the rigid sliding field.
   std::complex<double> drive(std::complex<double> z) const { return sigma + std::complex<double>(-phi * z.imag(), phi * z.real()); }
@@ -73,6 +76,9 @@ struct BristlePath
   std::complex<double> position(double tau) const;
   /// 1 - r^2 there, written so that it does not cancel near the edges (tau(L - tau) on a straight path).
   double edgeDistance(double tau) const;
+  /// The same at travel `near` from the nearer end of the path (the path is symmetric about x = 0), for callers
+  /// that know that distance better than length - tau.
+  double edgeDistanceNear(double near) const;
 };
 
 /// A piece of one path: the bristle adheres (from its deflection at the start) or slides over [begin, end].
@@ -112,13 +118,14 @@ struct PathIntegrals
   std::array<PathPiece, kMaxPieces> piece{};  ///< filled only on request (solve's keep_pieces)
 };
 
-/// Solves one path with exact events: where the bristle reaches the bound (|u| = f, stick to slip) and
-/// where a sliding bristle re-adheres (the bound grows along the path faster than the drive pushes it,
-/// df/dtau >= |w|, the region G of re-adhesion, fixed in the plane), each located as a root of a polynomial
-/// (Taylor series of the exact path, to machine precision; polynomials of degree 2-4 on straight paths
-/// without the turn coupling) and isolated exactly. Adhering pieces are integrated exactly; sliding pieces by
-/// Gauss-Legendre rules graded towards the spin pole, with `tolerance` bounding their error. A path whose work
-/// would pass `work_limit` stops there, flagged truncated.
+/// Solves one path from the leading edge (eq. 8) to the trailing edge, piece by piece with exact events.
+/// Adhering pieces follow eqs. 15c / 35c exactly (Taylor series of the exact path, to machine precision), and
+/// the onset of sliding (|u| reaches f) is located as a root of a polynomial. Sliding pieces follow the field's
+/// law: under SlidingLaw::Rigid the bristle lies along the drive, re-adheres where the bound grows along the path
+/// faster than the drive pushes it (df/dtau >= |w|, the region G, fixed in the plane; located as roots), and is
+/// integrated by Gauss-Legendre rules graded towards the spin pole; under SlidingLaw::Coulomb its direction follows
+/// eq. (4b) (path/coulomb_sliding.h) and it re-adheres where its own sliding speed vanishes. `tolerance` bounds
+/// the sliding pieces' error. A path whose work would pass `work_limit` stops there, flagged truncated.
 PathIntegrals solvePath(const BristleField& field, const BristlePath& path, double tolerance, bool keep_pieces = false,
                         long work_limit = kUnlimitedWork);
 

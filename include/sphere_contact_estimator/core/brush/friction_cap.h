@@ -8,6 +8,7 @@
 
 // Package
 #include "sphere_contact_estimator/core/brush/brush_parameters.h"
+#include "sphere_contact_estimator/core/brush/pressure_law.h"
 
 namespace sphere_contact_estimator
 {
@@ -22,7 +23,7 @@ public:
   explicit FrictionCap(const BrushParameters& p)
     : pressure_(p.pressure), inv_a2_(1.0 / (p.a * p.a)), edge_(1.0 - 1e-12), mu_over_k_(p.mu / p.k)
   {
-    q0_ = peakFactor(pressure_) * p.F_z / (M_PI * p.a * p.a);  // q_z at the centre
+    q0_ = pressure_.peakFactor() * p.F_z / (M_PI * p.a * p.a);  // q_z at the centre
   }
 
   struct Result
@@ -33,41 +34,11 @@ public:
   };
 
   /// Pressure q_z [N/m^2] at squared distance r2 from the patch centre (BrushParameters::qz, folded).
-  double qz(double r2) const
-  {
-    const double t = 1.0 - r2 * inv_a2_;
-    if (t <= 0.0)
-      return 0.0;
-    switch (pressure_)
-    {
-      case PressureDistribution::Parabolic:
-        return q0_ * t;
-      case PressureDistribution::Hertzian:
-        return q0_ * std::sqrt(t);
-      case PressureDistribution::Uniform:
-        return q0_;
-    }
-    return 0.0;
-  }
+  double qz(double r2) const { return q0_ * pressure_.shape(1.0 - r2 * inv_a2_); }
 
   /// The growth of the bound mu q_z / k with r^2 [m/m^2]: d(mu q_z / k) / d(r^2) (0 off the patch, and for the
   /// uniform pressure; unbounded at the edge for the Hertzian one).
-  double boundSlope(double r2) const
-  {
-    const double t = 1.0 - r2 * inv_a2_;
-    if (t <= 0.0)
-      return 0.0;
-    switch (pressure_)
-    {
-      case PressureDistribution::Parabolic:
-        return -mu_over_k_ * q0_ * inv_a2_;
-      case PressureDistribution::Hertzian:
-        return -0.5 * mu_over_k_ * q0_ * inv_a2_ / std::sqrt(t);
-      case PressureDistribution::Uniform:
-        return 0.0;
-    }
-    return 0.0;
-  }
+  double boundSlope(double r2) const { return -mu_over_k_ * q0_ * inv_a2_ * pressure_.shapeSlope(1.0 - r2 * inv_a2_); }
 
   /// Puts a sliding bristle at x [m] on the bound along w (u = mu q_z / k w / |w|), whatever its deflection was.
   Result slide(Eigen::Vector2d& u, const Eigen::Vector2d& x, const Eigen::Vector2d& w) const
@@ -123,7 +94,7 @@ public:
   }
 
 private:
-  PressureDistribution pressure_;
+  PressureLaw pressure_;
   double inv_a2_, edge_, mu_over_k_, q0_ = 0.0;
 };
 

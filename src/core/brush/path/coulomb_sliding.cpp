@@ -1,0 +1,560 @@
+#include "coulomb_sliding.h"
+
+// STL
+#include <algorithm>
+#include <cmath>
+
+namespace sphere_contact_estimator::path
+{
+namespace
+{
+constexpr int kMaxSteps = 4000;      // attempted steps per piece; beyond, the path is flagged truncated
+constexpr long kStepWork = 80;       // four nodes and two 2x2 exponentials (PathIntegrals::work units)
+constexpr double kEdgeShare = 1e-2;  // of the tolerance: what the unintegrated ends of a piece may hold
+constexpr double kMaxTurnError = 1e-2;  // rad per step, wherever the bound is: the events read the direction
+// The sixth-order step's error against the difference d of the fourth- and sixth-order ones: both errors scale with
+// powers of (|B| h), h^7 and h^5, so err6 ~ c d^(7/5) with c independent of the scale; c = 1.6 - 3.9 measured over
+// steps of 0.2 - 1.6 on full-sliding paths (docs/benchmarks.md), taken 10.
+constexpr double kSixthOrder = 10.0;
+
+// Three Gauss-Legendre nodes on [0, 1] and their weights: the Magnus methods' and the forces' rule.
+constexpr double kHalfSpread = 0.3872983346207417;  // sqrt(15) / 10
+constexpr double kC[3] = { 0.5 - kHalfSpread, 0.5, 0.5 + kHalfSpread };
+constexpr double kW[3] = { 5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0 };
+
+/// A real 2x2 matrix [[a, b], [c, d]].
+struct Mat
+{
+  double a = 0.0, b = 0.0, c = 0.0, d = 0.0;
+};
+Mat operator+(const Mat& x, const Mat& y) { return { x.a + y.a, x.b + y.b, x.c + y.c, x.d + y.d }; }
+Mat operator-(const Mat& x, const Mat& y) { return { x.a - y.a, x.b - y.b, x.c - y.c, x.d - y.d }; }
+Mat operator*(double k, const Mat& x) { return { k * x.a, k * x.b, k * x.c, k * x.d }; }
+Mat commutator(const Mat& x, const Mat& y)
+{
+  return { x.b * y.c - x.c * y.b, x.a * y.b + x.b * y.d - y.a * x.b - y.b * x.d,
+           x.c * y.a + x.d * y.c - y.c * x.a - y.d * x.c, x.c * y.b - x.b * y.c };
+}
+
+struct Vec
+{
+  double x = 1.0, y = 0.0;
+};
+Vec normalized(Vec v)
+{
+  const double n2 = v.x * v.x + v.y * v.y;  // v is of order 1: no overflow
+  if (!(n2 > 0.0))
+    return Vec{};
+  const double k = 1.0 / std::sqrt(n2);
+  return { v.x * k, v.y * k };
+}
+// The unit direction e^{i theta} of the half-angle vector v = (cos theta/2, sin theta/2) (any length): v^2 / |v|^2.
+cd direction(Vec v)
+{
+  const double n2 = v.x * v.x + v.y * v.y;
+  return n2 > 0.0 ? cd(v.x * v.x - v.y * v.y, 2.0 * v.x * v.y) / n2 : cd(1.0, 0.0);
+}
+// A half-angle vector of the unit direction e.
+Vec halfAngle(cd e)
+{
+  const double c = std::clamp(e.real(), -1.0, 1.0);
+  return { std::sqrt(0.5 * (1.0 + c)), std::copysign(std::sqrt(0.5 * (1.0 - c)), e.imag()) };
+}
+double angleOf(Vec v) { return 2.0 * std::atan2(v.y, v.x); }
+
+// exp(O) v, up to a positive factor (only the direction counts), for a traceless O: O^2 = q I with q = a^2 + b c, so
+// exp(O) = cosh(sqrt q) I + sinh(sqrt q) / sqrt(q) O, here divided by the cosh (no overflow in a stiff step).
+Vec applyExp(const Mat& O, Vec v)
+{
+  const double a = 0.5 * (O.a - O.d);  // the traceless part (a trace only scales)
+  const double q = a * a + O.b * O.c;
+  double c, k;  // exp ~ c I + k [[a, b], [c, -a]]
+  if (q > 1e-8)
+  {
+    const double mu = std::sqrt(q), e = std::exp(-2.0 * mu);  // tanh(mu) = (1 - e) / (1 + e)
+    c = 1.0;
+    k = (1.0 - e) / ((1.0 + e) * mu);
+  }
+  else if (q < -1e-8)
+  {
+    const double nu = std::sqrt(-q);
+    c = std::cos(nu);
+    k = std::sin(nu) / nu;
+  }
+  else  // the series of both to q^2
+  {
+    c = 1.0 + q / 2.0 + q * q / 24.0;
+    k = 1.0 + q / 6.0 + q * q / 120.0;
+  }
+  return normalized({ c * v.x + k * (a * v.x + O.b * v.y), c * v.y + k * (O.c * v.x - a * v.y) });
+}
+
+// The pressure law's map from its variable s to travel tau, in which 1/f is bounded: f ~ t (simple zeros at both
+// ends of the path): tau = L / (1 + e^-s) on the real line; f ~ sqrt t: tau = L sin^2(s/2) on [0, pi]; f constant:
+// tau = s. Gives tau, L - tau (without cancellation), dtau/ds and its derivative.
+class TravelMap
+{
+public:
+  TravelMap(int m, double L) : m_(m), L_(L) {}
+
+  void at(double s, double& tau, double& rest, double& g, double& g_s) const
+  {
+    if (m_ == 2)
+    {
+      const double e = std::exp(-std::abs(s));  // tau = L / (1 + e^-s), rest = L / (1 + e^s)
+      const double small = L_ * e / (1.0 + e), large = L_ / (1.0 + e);
+      tau = s >= 0.0 ? large : small;
+      rest = s >= 0.0 ? small : large;
+      g = tau * rest / L_;
+      g_s = g * (rest - tau) / L_;
+    }
+    else if (m_ == 1)
+    {
+      const double sh = std::sin(0.5 * s), ch = std::cos(0.5 * s);
+      tau = L_ * sh * sh;
+      rest = L_ * ch * ch;
+      g = L_ * sh * ch;
+      g_s = 0.5 * (rest - tau);
+    }
+    else
+    {
+      tau = s;
+      rest = L_ - s;
+      g = 1.0;
+      g_s = 0.0;
+    }
+  }
+  double of(double tau) const
+  {
+    if (m_ == 2)
+      return std::log(tau / (L_ - tau));
+    if (m_ == 1)
+      return 2.0 * std::atan2(std::sqrt(tau), std::sqrt(std::max(0.0, L_ - tau)));
+    return tau;
+  }
+  /// s of the trailing edge (infinite for m = 2).
+  double end() const { return m_ == 2 ? INFINITY : (m_ == 1 ? M_PI : L_); }
+
+private:
+  int m_;
+  double L_;
+};
+
+// What the law needs at one point of the path, in the map's variable s (' = d/ds).
+struct Node
+{
+  double s = 0.0, tau = 0.0, rest = 0.0;
+  double g = 0.0;      // dtau/ds
+  double f = 0.0;      // the bound
+  double slope = 0.0;  // df/dtau
+  cd z, w;             // root, drive
+  cd w_hat;            // w / |w| (1 where w = 0)
+  bool turns = false;  // w != 0: the drive's frame exists
+  // The direction equation theta' = K + Im(W e^{-i theta}) with W = (g / f) w, K = g kappa; in the drive's frame
+  // (Delta = theta - arg w): Delta' = Kd - |W| sin Delta with Kd = g (kappa - d arg(w) / dtau).
+  double W_abs = 0.0, W_abs_s = 0.0, Kd = 0.0, Kd_s = 0.0;
+  Mat B;   // the half-angle system in the patch's frame
+  Mat Bd;  // and in the drive's
+};
+
+class CoulombSlider
+{
+public:
+  CoulombSlider(const BristleField& field, const BristlePath& path, double tolerance)
+    : f_(field)
+    , p_(path)
+    , law_(field.pressure)
+    , m_(law_.squaredExponent())
+    , map_(m_, path.length)
+    , tol_(tolerance)
+    , straight_(field.omega == 0.0)
+  {
+  }
+
+  // g / f, finite at the ends (t vanishes as tau (L - tau) times a positive factor)
+  double ratio(double tau, double rest, double g, double t) const
+  {
+    if (m_ == 2)
+      return t > 0.0 ? tau * rest / (p_.length * t) : 1.0 / p_.length;
+    if (m_ == 1)
+      return t > 0.0 ? std::sqrt(tau * rest / t) : 1.0;
+    (void)g;
+    return 1.0;
+  }
+
+  Node node(double s) const
+  {
+    Node n;
+    n.s = s;
+    double g_s;
+    map_.at(s, n.tau, n.rest, n.g, g_s);
+    double t, ratio_value, ratio_s = 0.0;
+    cd z_tau(-1.0, 0.0);
+    if (straight_)  // z = z_e - tau, 1 - r^2 = tau (L - tau): g / f is constant
+    {
+      n.z = cd(p_.entry.real() - n.tau, p_.entry.imag());
+      t = n.tau * n.rest;
+      ratio_value = m_ == 2 ? 1.0 / p_.length : 1.0;
+    }
+    else
+    {
+      n.z = p_.position(n.tau);
+      z_tau += timesI(f_.omega, n.z);
+      t = p_.edgeDistanceNear(std::min(n.tau, n.rest));
+      ratio_value = ratio(n.tau, n.rest, n.g, t);
+      if (m_ != 0)  // its derivative along the arc, by a central difference (smooth, and only where it matters)
+      {
+        const double d = 1e-5 * std::min(n.tau, n.rest);
+        if (d > 0.0)
+        {
+          const auto at = [&](double tau) {
+            const double rest = p_.length - tau;
+            return ratio(tau, rest, 0.0, p_.edgeDistanceNear(std::min(tau, rest)));
+          };
+          ratio_s = n.g * (at(n.tau + d) - at(n.tau - d)) / (2.0 * d);
+        }
+      }
+    }
+    n.f = law_.shape(t);
+    n.slope = law_.shapeSlope(t) * 2.0 * n.z.real();  // dt/dtau = -d(r^2)/dtau = 2 x on any path
+    n.w = f_.drive(n.z);
+    const cd W = ratio_value * n.w;
+    const double K = n.g * f_.kappa;
+    n.B = { 0.5 * W.real(), 0.5 * (W.imag() - K), 0.5 * (W.imag() + K), -0.5 * W.real() };
+    const double w2 = std::norm(n.w), w_abs = std::sqrt(w2);
+    n.turns = w_abs > 0.0;
+    n.w_hat = n.turns ? n.w / w_abs : cd(1.0, 0.0);
+    if (n.turns)
+    {
+      const cd w_tau = timesI(f_.phi, z_tau), w_tautau = timesI(f_.phi, timesI(f_.omega, z_tau));
+      const cd inv_w = std::conj(n.w) / w2;
+      const cd q = w_tau * inv_w;                 // d log(w) / dtau: Im is the drive's turn rate
+      const cd q_tau = w_tautau * inv_w - q * q;
+      n.W_abs = ratio_value * w_abs;
+      n.W_abs_s = ratio_s * w_abs + ratio_value * n.g * w_abs * q.real();
+      n.Kd = n.g * (f_.kappa - q.imag());
+      n.Kd_s = g_s * (f_.kappa - q.imag()) - n.g * n.g * q_tau.imag();
+      n.Bd = { 0.5 * n.W_abs, -0.5 * n.Kd, 0.5 * n.Kd, -0.5 * n.W_abs };
+    }
+    return n;
+  }
+
+  // The law's sliding speed sign, Re(w e*) - df/dtau: sliding goes on while it is >= 0 (eq. 4b, lambda >= 0).
+  static double pushing(const Node& n, cd e) { return dot(n.w, e) - n.slope; }
+
+  // The direction the law gives a bristle entering sliding where the bound vanishes: the growing mode of B.
+  static Vec growingMode(const Mat& B)
+  {
+    const double a = 0.5 * (B.a - B.d), q = a * a + B.b * B.c;
+    if (!(q > 0.0))
+      return halfAngle(cd(1.0, 0.0));
+    const double mu = std::sqrt(q);
+    const Vec v1{ B.b, mu - a }, v2{ mu + a, B.c };
+    return normalized(v1.x * v1.x + v1.y * v1.y >= v2.x * v2.x + v2.y * v2.y ? v1 : v2);
+  }
+
+  // Runs the piece; accumulates into `out` unless it is null; stops at stop_tau (drawing) or at a re-adhesion.
+  SlideEnd run(const SlideStart& start, double stop_tau, PathIntegrals* out, long work_limit);
+
+private:
+  const BristleField& f_;
+  const BristlePath& p_;
+  PressureLaw law_;
+  int m_;
+  TravelMap map_;
+  double tol_;
+  bool straight_;
+};
+
+// Delta and its first two derivatives at a node: the quintic Hermite interpolant of the drive's frame
+double slopeOf(const Node& n, double delta) { return n.Kd - n.W_abs * std::sin(delta); }
+double curvatureOf(const Node& n, double delta)
+{
+  return n.Kd_s - n.W_abs_s * std::sin(delta) - n.W_abs * std::cos(delta) * slopeOf(n, delta);
+}
+
+SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathIntegrals* out, long work_limit)
+{
+  SlideEnd end;
+  const double L = p_.length;
+  end.tau = std::min(stop_tau, L);
+  end.direction = start.direction;
+  if (!(start.tau < end.tau))
+  {
+    end.tau = std::max(start.tau, 0.0);
+    return end;
+  }
+  double s0;
+  cd e;  // the state between steps: the unit direction of u
+  double error = 0.0;
+  if (start.from_rim && m_ == 2)
+  {
+    // the first stretch, where the bound is below what counts, with the direction the law gives there; the rest from
+    // there
+    const Node entry = node(map_.of(1e-9 * L));
+    const double rate = std::max(std::abs(entry.slope), 1e-3);  // df/dtau at the rim
+    const double tau_s = std::min(1e-3 * L, std::sqrt(kEdgeShare * tol_ / rate));
+    s0 = map_.of(tau_s);
+    const Node first = node(s0);
+    e = direction(growingMode(first.B));
+    const double held = 0.5 * rate * tau_s * tau_s;  // the integral of f over [0, tau_s]
+    if (out)
+    {
+      out->force += held * e;
+      out->moment += held * cross(first.z, e);
+    }
+    error += 2.0 * held;
+  }
+  else
+  {
+    s0 = map_.of(std::max(start.tau, 0.0));
+    e = start.direction;
+  }
+  // where to stop: the trailing edge, less the stretch whose bound is below what counts (f ~ t only), or stop_tau
+  double s_end = map_.of(end.tau);
+  double tail = 0.0;
+  cd tail_arm = 0.0;
+  if (end.tau >= L && m_ == 2)
+  {
+    const Node last = node(map_.of(L * (1.0 - 1e-9)));
+    const double rate = std::max(std::abs(last.slope), 1e-3);
+    const double rest = std::min(1e-3 * L, std::sqrt(kEdgeShare * tol_ / rate));
+    s_end = map_.of(L - rest);
+    tail = 0.5 * rate * rest * rest;
+    tail_arm = last.z;
+  }
+  if (!(s_end > s0))
+    s_end = s0;
+  // A piece whose bound is too small for any force it holds to count (paths grazing the rim, where the direction
+  // equation is as stiff as the path is short): the drive's direction, which the law makes it take there, bounded.
+  {
+    const double tau_a = map_.of(s0) == s0 ? s0 : node(s0).tau, tau_b = node(s_end).tau;
+    const double most = (tau_b - tau_a) * law_.shape(p_.edgeDistance(0.5 * L));  // >= the integral of f
+    if (out && most <= kEdgeShare * tol_)
+    {
+      const Node mid = node(0.5 * (s0 + s_end));
+      out->force += 0.5 * most * mid.w_hat;
+      out->moment += 0.5 * most * cross(mid.z, mid.w_hat);
+      out->sliding += end.tau - std::max(start.tau, 0.0);
+      out->utilisation2 = 1.0;
+      out->error += error + most;
+      end.direction = node(s_end).w_hat;
+      return end;
+    }
+  }
+  bool armed = start.armed;
+  double drift = 0.0;                                 // direction error carried into later steps
+  const double density = tol_ / std::max(L, 1e-12);  // error allowed per unit travel
+  double h = std::isfinite(map_.end()) ? 0.1 * (map_.end() - s0) : 0.5;
+  h = std::min(h, s_end - s0);
+  int attempts = 0;
+  double s = s0;
+  Node n0 = node(s0);
+  while (s < s_end)
+  {
+    if (++attempts > kMaxSteps || (out && out->work > work_limit))
+    {
+      if (out)
+        out->truncated = true;
+      break;
+    }
+    if (out)
+      out->work += kStepWork;
+    const double step = std::min(h, s_end - s);
+    const bool last = step >= s_end - s;
+    const Node n[3] = { node(s + kC[0] * step), node(s + kC[1] * step), node(s + kC[2] * step) };
+    const Node nE = node(s + step);
+    // The drive's frame, where the direction hardly turns, unless the drive turns faster there than the law pulls
+    // the bristle (beside a spin pole) or vanishes.
+    bool in_drive = n0.turns && nE.turns;
+    double W_max = 0.0, K_max = 0.0, f_max = 0.0;
+    for (const Node& x : n)
+    {
+      in_drive = in_drive && x.turns;
+      W_max = std::max(W_max, x.W_abs);
+      K_max = std::max(K_max, std::abs(x.Kd));
+      f_max = std::max(f_max, x.f);
+    }
+    in_drive = in_drive && K_max <= W_max;
+    // sixth- and fourth-order Magnus approximations of the step's log from the same Gauss nodes
+    const Mat& B1 = in_drive ? n[0].Bd : n[0].B;
+    const Mat& B2 = in_drive ? n[1].Bd : n[1].B;
+    const Mat& B3 = in_drive ? n[2].Bd : n[2].B;
+    const Mat a1 = step * B2, a2 = (1.2909944487358056 * step) * (B3 - B1)  /* sqrt(15) / 3 */,
+              a3 = (10.0 * step / 3.0) * (B3 - 2.0 * B2 + B1);
+    const Mat c1 = commutator(a1, a2);
+    const Mat c2 = (-1.0 / 60.0) * commutator(a1, 2.0 * a3 + c1);
+    const Mat base = a1 + (1.0 / 12.0) * a3;
+    const Mat omega6 = base + (1.0 / 240.0) * commutator(-20.0 * a1 - a3 + c1, a2 + c2);
+    const Mat omega4 = base - (1.0 / 12.0) * c1;
+    const cd frame0 = in_drive ? n0.w_hat : cd(1.0, 0.0), frame1 = in_drive ? nE.w_hat : cd(1.0, 0.0);
+    const Vec v0 = halfAngle(e * std::conj(frame0));
+    const Vec v6 = applyExp(omega6, v0), v4 = applyExp(omega4, v0);
+    const cd e6 = direction(v6) * frame1;
+    const double de = std::sqrt(std::norm(e6 - direction(v4) * frame1));
+    // The direction inside the step. In the drive's frame: the quintic Hermite interpolant of Delta from its value and
+    // first two derivatives at both ends (sixth order). In the patch's frame: from the start by the fourth-order
+    // Magnus approximation over [0, x h] of the quadratic through the nodes, B(y) = P0 + P1 (y - 1/2) + P2 (y - 1/2)^2.
+    const double delta0 = angleOf(v0);
+    const double delta1 = delta0 + std::arg(direction(v6) * std::conj(direction(v0)));
+    const double y0 = delta0, y1 = delta1, p0 = step * slopeOf(n0, y0), p1 = step * slopeOf(nE, y1),
+                 q0 = step * step * curvatureOf(n0, y0), q1 = step * step * curvatureOf(nE, y1);
+    const Mat P0 = B2, P1 = (0.5 / kHalfSpread) * (B3 - B1),
+              P2 = (0.5 / (kHalfSpread * kHalfSpread)) * (B3 - 2.0 * B2 + B1);
+    const auto magnus = [&](double x) {
+      const double y = x - 0.5, ym = 0.5 * x - 0.5;
+      const Mat integral = x * P0 + (0.5 * (y * y - 0.25)) * P1 + ((y * y * y + 0.125) / 3.0) * P2;
+      const Mat mid = P0 + ym * P1 + (ym * ym) * P2, rate = P1 + (2.0 * ym) * P2;
+      return direction(applyExp(step * integral - (x * x * x * step * step / 12.0) * commutator(mid, rate), v0));
+    };
+    const auto hermite = [&](double x) {
+      const double x2 = x * x, x3 = x2 * x, x4 = x3 * x, x5 = x4 * x;
+      return (1.0 - 10.0 * x3 + 15.0 * x4 - 6.0 * x5) * y0 + (x - 6.0 * x3 + 8.0 * x4 - 3.0 * x5) * p0 +
+             (0.5 * x2 - 1.5 * x3 + 1.5 * x4 - 0.5 * x5) * q0 + (10.0 * x3 - 15.0 * x4 + 6.0 * x5) * y1 +
+             (-4.0 * x3 + 7.0 * x4 - 3.0 * x5) * p1 + (0.5 * x3 - x4 + 0.5 * x5) * q1;
+    };
+    // The interpolant holds where Delta is smooth on the step's scale; in a fast transient (the direction relaxing
+    // onto the drive's after an onset) it does not: there it agrees with the Magnus formula no better than that
+    // formula's own error, and the Magnus formula serves, with the fourth-order error.
+    bool smooth = in_drive;
+    if (smooth)
+    {
+      const cd by_magnus = magnus(0.5), by_hermite = std::polar(1.0, hermite(0.5));
+      smooth = std::norm(by_magnus - by_hermite) <= de * de;
+    }
+    const double err = smooth ? kSixthOrder * std::pow(de, 1.4) : de;
+    // the direction must stay resolved even where the bound is too small for its forces to count: the events read it
+    if ((err * f_max > density || err > kMaxTurnError) && step > 1e-9 * (1.0 + std::abs(s)))
+    {
+      const double over = std::max(err * f_max / density, err / kMaxTurnError);
+      h = step * std::max(0.2, 0.9 * std::pow(1.0 / over, smooth ? 1.0 / 7.0 : 0.2));
+      continue;
+    }
+    const auto inside = [&](double x, const Node& at) {
+      if (smooth)
+        return std::polar(1.0, hermite(x)) * at.w_hat;
+      return in_drive ? magnus(x) * at.w_hat : magnus(x);
+    };
+    cd e_at[3];
+    for (int j = 0; j < 3; ++j)
+      e_at[j] = inside(kC[j], n[j]);
+    // re-adhesion: the first sample where the bristle is no longer pushed outward faster than the bound grows
+    double stop = 1.0;  // share of the step that slides
+    if (out || stop_tau >= L)
+    {
+      double prev = 0.0;
+      for (int j = 0; j <= 3; ++j)
+      {
+        if (j == 3 && last && end.tau >= L)
+          break;  // the trailing edge: nothing beyond
+        const double x = j < 3 ? kC[j] : 1.0;
+        const double E = j < 3 ? pushing(n[j], e_at[j]) : pushing(nE, e6);
+        if (E > 0.0)
+          armed = true;
+        else if (armed && E < 0.0)
+        {
+          // bracketed in (prev, x]: regula falsi (Illinois) on the step's interpolant
+          const auto g = [&](double y) {
+            const Node at = node(s + y * step);
+            return pushing(at, inside(y, at));
+          };
+          double lo = prev, hi = x, g_lo = std::max(g(lo), 0.0), g_hi = E;
+          for (int it = 0; it < 60 && hi - lo > 1e-13; ++it)
+          {
+            const double y = std::clamp(g_lo - g_hi != 0.0 ? hi - g_hi * (hi - lo) / (g_hi - g_lo) : 0.5 * (lo + hi), lo, hi);
+            const double gy = g(y);
+            if (gy < 0.0)
+            {
+              hi = y, g_hi = gy;
+              g_lo *= 0.5;
+            }
+            else
+            {
+              lo = y, g_lo = gy;
+              g_hi *= 0.5;
+            }
+          }
+          stop = hi;
+          break;
+        }
+        prev = x;
+      }
+    }
+    // the forces by the three-point Gauss rule on the sliding part of the step
+    double integral = 0.0;  // of f over it
+    const auto add = [&](const Node& at, double weight, cd dir) {
+      const double wgt = weight * at.g * at.f;
+      if (out)
+      {
+        out->force += wgt * dir;
+        out->moment += wgt * cross(at.z, dir);
+      }
+      integral += wgt;
+    };
+    if (stop < 1.0)
+    {
+      const double part = stop * step;
+      for (int j = 0; j < 3; ++j)
+      {
+        const Node at = node(s + kC[j] * part);
+        add(at, kW[j] * part, inside(kC[j] * stop, at));
+      }
+      const Node at = node(s + part);
+      end.tau = at.tau;
+      end.direction = inside(stop, at);
+      end.re_adheres = true;
+    }
+    else
+    {
+      for (int j = 0; j < 3; ++j)
+        add(n[j], kW[j] * step, e_at[j]);
+      end.direction = e6;
+    }
+    // The direction's error: this step's, and what earlier steps left, carried at the rate the law pulls the
+    // direction back (d(delta theta)/ds = -(g/f) Re(w e*) delta theta); it errs each force by at most that times f.
+    const double pull = n[1].W_abs > 0.0 ? n[1].W_abs * dot(n[1].w_hat, e_at[1]) : 0.0;
+    drift = drift * std::exp(std::clamp(-pull * step * stop, -50.0, 2.0)) + err;
+    error += 2.0 * drift * integral;
+    e = e6;
+    s += step;
+    n0 = nE;
+    if (stop < 1.0)
+      break;
+    const double over = std::max({ err * f_max / density, err / kMaxTurnError, 1e-300 });
+    h = step * std::clamp(0.9 * std::pow(1.0 / over, smooth ? 1.0 / 7.0 : 0.2), 0.2, 4.0);
+  }
+  if (!end.re_adheres)
+    end.tau = std::min(stop_tau, L);
+  if (out)
+  {
+    if (!end.re_adheres && end.tau >= L && tail > 0.0)
+    {
+      out->force += tail * end.direction;
+      out->moment += tail * cross(tail_arm, end.direction);
+      error += 2.0 * tail;
+    }
+    out->sliding += end.tau - std::max(start.tau, 0.0);
+    out->utilisation2 = 1.0;
+    out->error += error;
+  }
+  return end;
+}
+}  // namespace
+
+SlideEnd slideCoulomb(PathContext& ctx, const SlideStart& start)
+{
+  const int piece = ctx.addPiece(start.tau, ctx.path.length, false, start.direction);
+  CoulombSlider slider(ctx.field, ctx.path, ctx.tolerance);
+  const SlideEnd end = slider.run(start, ctx.path.length, &ctx.out, ctx.work_limit);
+  if (piece >= 0)
+    ctx.out.piece[piece].end = end.tau;
+  return end;
+}
+
+cd coulombDirectionAt(const BristleField& field, const BristlePath& path, const SlideStart& start, double tau)
+{
+  CoulombSlider slider(field, path, 1e-6);
+  return slider.run(start, tau, nullptr, kUnlimitedWork).direction;
+}
+
+}  // namespace sphere_contact_estimator::path
