@@ -55,6 +55,7 @@ BrushForces BrushMarching::integrate(const Eigen::Vector2d& sigma, double phi, d
     return out;
   }
   const FrictionCap cap(p_);
+  const bool coulomb = p_.sliding_law == SlidingLaw::Coulomb;
   // the drive of eqs. 11/32 is sigma + A_phi x, with A_phi x = (-phi y, phi x)
 
   // sums per path (Fx, Fy, M_z, load), then times the path's cell area; k applied at the end
@@ -151,8 +152,10 @@ BrushForces BrushMarching::integrate(const Eigen::Vector2d& sigma, double phi, d
           my = c + sg * qx + cg * qy;
         }
       }
-      const FrictionCap::Result r =
-          cap.apply(ux, uy, nx, ny, sigma.x() - phi * ny, sigma.y() + phi * nx);  // slides along drive(node)
+      // Rigid: slides along drive(node). Coulomb: the return mapping, back onto the bound along the trial itself
+      // (backward Euler of eq. 4b); re-adhesion is then automatic.
+      const FrictionCap::Result r = coulomb ? cap.apply(ux, uy, nx, ny, ux, uy) :
+                                              cap.apply(ux, uy, nx, ny, sigma.x() - phi * ny, sigma.y() + phi * nx);
       utilisation2 = std::max(utilisation2, r.utilisation2);
       Fx += ux;
       Fy += uy;

@@ -18,8 +18,10 @@ namespace sphere_contact_estimator::test
 /// bristle obeys du/dsigma_s = sigma + A_phi x [+ A_phi_psi u with tilt] (eqs. 11, 32), starting
 /// undeformed at the leading edge (eq. 8): without friction this is eq. 23 resp. eq. 51. With friction
 /// the deflection is capped as it goes: where adhesion would need |k u| > mu q_z the bristle slides with
-/// |q| = mu q_z along the rigid sliding field sigma + A_phi x (Sect. 6), and where the bound later
-/// exceeds what adhesion needs it re-adheres from its capped deflection (docs/conventions.md).
+/// |q| = mu q_z, and where the bound later exceeds what adhesion needs it re-adheres from its capped deflection
+/// (docs/conventions.md). The direction follows p.sliding_law: Rigid, along the rigid sliding field
+/// sigma + A_phi x (Sect. 6); Coulomb (eq. 4b), the FASTSIM-like return mapping: the propagated (trial) deflection
+/// scaled back onto the bound along itself, the backward-Euler step of the Coulomb law (first order).
 ///
 /// Discretisation: `resolution` paths at y = a sin(theta) (or rho = |R_gamma| + a sin(theta)) with
 /// theta at the midpoints of equal intervals, so the path lengths' square-root end behaviour is
