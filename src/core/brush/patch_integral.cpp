@@ -66,7 +66,7 @@ public:
     : f_(field)
     , tol_(tolerance)
     , max_work_(max_work)
-    , path_tol_(std::max(1e-14, 1e-2 * tolerance))
+    , path_tol_(std::max(1e-14, (field.law == SlidingLaw::Coulomb ? 5e-2 : 1e-2) * tolerance))
     // |weight * path integral| for any path and component: travel <= pi, |u| <= the field's bound, |z| <= 1,
     // weight <= 2
     , bound_(2.0 * pi * field.deflectionBound())

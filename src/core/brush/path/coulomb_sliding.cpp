@@ -1,4 +1,5 @@
 #include "coulomb_sliding.h"
+#include "rigid_sliding.h"
 
 // STL
 #include <algorithm>
@@ -55,10 +56,18 @@ cd direction(Vec v)
   return n2 > 0.0 ? cd(v.x * v.x - v.y * v.y, 2.0 * v.x * v.y) / n2 : cd(1.0, 0.0);
 }
 // A half-angle vector of the unit direction e.
+// A half-angle vector of the unit direction e: the larger component from the cosine, the other as sin / (2 that),
+// so that neither loses digits (sqrt(1 - cos) would near theta = 0).
 Vec halfAngle(cd e)
 {
   const double c = std::clamp(e.real(), -1.0, 1.0);
-  return { std::sqrt(0.5 * (1.0 + c)), std::copysign(std::sqrt(0.5 * (1.0 - c)), e.imag()) };
+  if (c >= 0.0)
+  {
+    const double x = std::sqrt(0.5 * (1.0 + c));
+    return { x, 0.5 * e.imag() / x };
+  }
+  const double y = std::copysign(std::sqrt(0.5 * (1.0 - c)), e.imag());
+  return { 0.5 * e.imag() / y, y };
 }
 double angleOf(Vec v) { return 2.0 * std::atan2(v.y, v.x); }
 
@@ -254,7 +263,7 @@ public:
   }
 
   // Runs the piece; accumulates into `out` unless it is null; stops at stop_tau (drawing) or at a re-adhesion.
-  SlideEnd run(const SlideStart& start, double stop_tau, PathIntegrals* out, long work_limit);
+  SlideEnd run(const SlideStart& start, double stop_tau, PathContext* ctx);
 
 private:
   const BristleField& f_;
@@ -273,47 +282,44 @@ double curvatureOf(const Node& n, double delta)
   return n.Kd_s - n.W_abs_s * std::sin(delta) - n.W_abs * std::cos(delta) * slopeOf(n, delta);
 }
 
-SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathIntegrals* out, long work_limit)
+SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContext* ctx)
 {
+  PathIntegrals* out = ctx ? &ctx->out : nullptr;
+  const long work_limit = ctx ? ctx->work_limit : kUnlimitedWork;
   SlideEnd end;
   const double L = p_.length;
+  const double tau_a = std::max(start.tau, 0.0);
   end.tau = std::min(stop_tau, L);
   end.direction = start.direction;
-  if (!(start.tau < end.tau))
+  if (!(tau_a < end.tau))
   {
-    end.tau = std::max(start.tau, 0.0);
+    end.tau = tau_a;
     return end;
   }
+  // The forces are the rigid field's, f w / |w|, integrated by the rigid law's own rules over the piece once its end
+  // is known, plus the correction f (e - w / |w|) by the steps' Gauss rule: small and smooth where the direction
+  // follows the drive closely, which is where the steps are long.
   double s0;
   cd e;  // the state between steps: the unit direction of u
   double error = 0.0;
   if (start.from_rim && m_ == 2)
   {
-    // the first stretch, where the bound is below what counts, with the direction the law gives there; the rest from
-    // there
+    // the first stretch, where the bound is below what counts: its correction is bounded, not integrated
     const Node entry = node(map_.of(1e-9 * L));
     const double rate = std::max(std::abs(entry.slope), 1e-3);  // df/dtau at the rim
     const double tau_s = std::min(1e-3 * L, std::sqrt(kEdgeShare * tol_ / rate));
     s0 = map_.of(tau_s);
-    const Node first = node(s0);
-    e = direction(growingMode(first.B));
-    const double held = 0.5 * rate * tau_s * tau_s;  // the integral of f over [0, tau_s]
-    if (out)
-    {
-      out->force += held * e;
-      out->moment += held * cross(first.z, e);
-    }
-    error += 2.0 * held;
+    e = direction(growingMode(node(s0).B));
+    error += 2.0 * (0.5 * rate * tau_s * tau_s);  // |e - w/|w|| <= 2 times the integral of f over [0, tau_s]
   }
   else
   {
-    s0 = map_.of(std::max(start.tau, 0.0));
+    s0 = map_.of(tau_a);
     e = start.direction;
   }
   // where to stop: the trailing edge, less the stretch whose bound is below what counts (f ~ t only), or stop_tau
   double s_end = map_.of(end.tau);
   double tail = 0.0;
-  cd tail_arm = 0.0;
   if (end.tau >= L && m_ == 2)
   {
     const Node last = node(map_.of(L * (1.0 - 1e-9)));
@@ -321,25 +327,31 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathIntegr
     const double rest = std::min(1e-3 * L, std::sqrt(kEdgeShare * tol_ / rate));
     s_end = map_.of(L - rest);
     tail = 0.5 * rate * rest * rest;
-    tail_arm = last.z;
   }
   if (!(s_end > s0))
     s_end = s0;
+  const auto finish = [&](double extra_error) {
+    if (!end.re_adheres)
+      end.tau = std::min(stop_tau, L);
+    if (out)
+    {
+      integrateRigid(*ctx, tau_a, end.tau);
+      if (!end.re_adheres && end.tau >= L)
+        error += 2.0 * tail;
+      out->sliding += end.tau - tau_a;
+      out->utilisation2 = 1.0;
+      out->error += error + extra_error;
+    }
+    return end;
+  };
   // A piece whose bound is too small for any force it holds to count (paths grazing the rim, where the direction
   // equation is as stiff as the path is short): the drive's direction, which the law makes it take there, bounded.
   {
-    const double tau_a = map_.of(s0) == s0 ? s0 : node(s0).tau, tau_b = node(s_end).tau;
-    const double most = (tau_b - tau_a) * law_.shape(p_.edgeDistance(0.5 * L));  // >= the integral of f
+    const double most = (node(s_end).tau - node(s0).tau) * law_.shape(p_.edgeDistance(0.5 * L));  // >= int f
     if (out && most <= kEdgeShare * tol_)
     {
-      const Node mid = node(0.5 * (s0 + s_end));
-      out->force += 0.5 * most * mid.w_hat;
-      out->moment += 0.5 * most * cross(mid.z, mid.w_hat);
-      out->sliding += end.tau - std::max(start.tau, 0.0);
-      out->utilisation2 = 1.0;
-      out->error += error + most;
       end.direction = node(s_end).w_hat;
-      return end;
+      return finish(2.0 * most);
     }
   }
   bool armed = start.armed;
@@ -380,7 +392,7 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathIntegr
     const Mat& B1 = in_drive ? n[0].Bd : n[0].B;
     const Mat& B2 = in_drive ? n[1].Bd : n[1].B;
     const Mat& B3 = in_drive ? n[2].Bd : n[2].B;
-    const Mat a1 = step * B2, a2 = (1.2909944487358056 * step) * (B3 - B1)  /* sqrt(15) / 3 */,
+    const Mat a1 = step * B2, a2 = (1.2909944487358056 * step) * (B3 - B1) /* sqrt(15) / 3 */,
               a3 = (10.0 * step / 3.0) * (B3 - 2.0 * B2 + B1);
     const Mat c1 = commutator(a1, a2);
     const Mat c2 = (-1.0 / 60.0) * commutator(a1, 2.0 * a3 + c1);
@@ -393,8 +405,9 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathIntegr
     const cd e6 = direction(v6) * frame1;
     const double de = std::sqrt(std::norm(e6 - direction(v4) * frame1));
     // The direction inside the step. In the drive's frame: the quintic Hermite interpolant of Delta from its value and
-    // first two derivatives at both ends (sixth order). In the patch's frame: from the start by the fourth-order
-    // Magnus approximation over [0, x h] of the quadratic through the nodes, B(y) = P0 + P1 (y - 1/2) + P2 (y - 1/2)^2.
+    // first two derivatives at both ends (sixth order). Where that does not hold (a fast transient) or in the patch's
+    // frame: from the start by the fourth-order Magnus approximation over [0, x h] of the quadratic through the nodes,
+    // B(y) = P0 + P1 (y - 1/2) + P2 (y - 1/2)^2.
     const double delta0 = angleOf(v0);
     const double delta1 = delta0 + std::arg(direction(v6) * std::conj(direction(v0)));
     const double y0 = delta0, y1 = delta1, p0 = step * slopeOf(n0, y0), p1 = step * slopeOf(nE, y1),
@@ -413,23 +426,9 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathIntegr
              (0.5 * x2 - 1.5 * x3 + 1.5 * x4 - 0.5 * x5) * q0 + (10.0 * x3 - 15.0 * x4 + 6.0 * x5) * y1 +
              (-4.0 * x3 + 7.0 * x4 - 3.0 * x5) * p1 + (0.5 * x3 - x4 + 0.5 * x5) * q1;
     };
-    // The interpolant holds where Delta is smooth on the step's scale; in a fast transient (the direction relaxing
-    // onto the drive's after an onset) it does not: there it agrees with the Magnus formula no better than that
-    // formula's own error, and the Magnus formula serves, with the fourth-order error.
     bool smooth = in_drive;
     if (smooth)
-    {
-      const cd by_magnus = magnus(0.5), by_hermite = std::polar(1.0, hermite(0.5));
-      smooth = std::norm(by_magnus - by_hermite) <= de * de;
-    }
-    const double err = smooth ? kSixthOrder * std::pow(de, 1.4) : de;
-    // the direction must stay resolved even where the bound is too small for its forces to count: the events read it
-    if ((err * f_max > density || err > kMaxTurnError) && step > 1e-9 * (1.0 + std::abs(s)))
-    {
-      const double over = std::max(err * f_max / density, err / kMaxTurnError);
-      h = step * std::max(0.2, 0.9 * std::pow(1.0 / over, smooth ? 1.0 / 7.0 : 0.2));
-      continue;
-    }
+      smooth = std::norm(magnus(0.5) - std::polar(1.0, hermite(0.5))) <= std::max(de * de, 1e-26);
     const auto inside = [&](double x, const Node& at) {
       if (smooth)
         return std::polar(1.0, hermite(x)) * at.w_hat;
@@ -438,6 +437,32 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathIntegr
     cd e_at[3];
     for (int j = 0; j < 3; ++j)
       e_at[j] = inside(kC[j], n[j]);
+    // the correction f (e - w / |w|) g and its moment: the Gauss rule, and Simpson's on the ends and the middle node
+    // for its error
+    const auto rigid = [](const Node& at) { return at.turns ? at.w_hat : cd(0.0); };
+    const auto correction = [&](const Node& at, cd dir, cd& force, double& moment) {
+      force = at.g * at.f * (dir - rigid(at));
+      moment = cross(at.z, force);
+    };
+    cd qf[3], qf0, qfE;
+    double qm[3], qm0, qmE;
+    for (int j = 0; j < 3; ++j)
+      correction(n[j], e_at[j], qf[j], qm[j]);
+    correction(n0, e, qf0, qm0);
+    correction(nE, e6, qfE, qmE);
+    const cd gauss_f = step * (kW[0] * qf[0] + kW[1] * qf[1] + kW[2] * qf[2]);
+    const double gauss_m = step * (kW[0] * qm[0] + kW[1] * qm[1] + kW[2] * qm[2]);
+    const double quad_err = std::max(std::sqrt(std::norm(gauss_f - step / 6.0 * (qf0 + 4.0 * qf[1] + qfE))),
+                                     std::abs(gauss_m - step / 6.0 * (qm0 + 4.0 * qm[1] + qmE)));
+    const double travel = nE.tau - n0.tau;
+    const double err = smooth ? kSixthOrder * std::pow(de, 1.4) : de;
+    // the direction must stay resolved even where the bound is too small for its forces to count: the events read it
+    const double over = std::max({ err * f_max / density, err / kMaxTurnError, quad_err / (density * travel), 1e-300 });
+    if (over > 1.0 && step > 1e-9 * (1.0 + std::abs(s)))
+    {
+      h = step * std::max(0.2, 0.9 * std::pow(1.0 / over, smooth ? 1.0 / 7.0 : 0.2));
+      continue;
+    }
     // re-adhesion: the first sample where the bristle is no longer pushed outward faster than the bound grows
     double stop = 1.0;  // share of the step that slides
     if (out || stop_tau >= L)
@@ -480,24 +505,22 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathIntegr
         prev = x;
       }
     }
-    // the forces by the three-point Gauss rule on the sliding part of the step
-    double integral = 0.0;  // of f over it
-    const auto add = [&](const Node& at, double weight, cd dir) {
-      const double wgt = weight * at.g * at.f;
-      if (out)
-      {
-        out->force += wgt * dir;
-        out->moment += wgt * cross(at.z, dir);
-      }
-      integral += wgt;
-    };
+    double integral = 0.0;  // of f over the sliding part of the step
     if (stop < 1.0)
     {
       const double part = stop * step;
       for (int j = 0; j < 3; ++j)
       {
         const Node at = node(s + kC[j] * part);
-        add(at, kW[j] * part, inside(kC[j] * stop, at));
+        cd qf_j;
+        double qm_j;
+        correction(at, inside(kC[j] * stop, at), qf_j, qm_j);
+        if (out)
+        {
+          out->force += kW[j] * part * qf_j;
+          out->moment += kW[j] * part * qm_j;
+        }
+        integral += kW[j] * part * at.g * at.f;
       }
       const Node at = node(s + part);
       end.tau = at.tau;
@@ -506,38 +529,29 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathIntegr
     }
     else
     {
+      if (out)
+      {
+        out->force += gauss_f;
+        out->moment += gauss_m;
+      }
       for (int j = 0; j < 3; ++j)
-        add(n[j], kW[j] * step, e_at[j]);
+        integral += kW[j] * step * n[j].g * n[j].f;
       end.direction = e6;
     }
     // The direction's error: this step's, and what earlier steps left, carried at the rate the law pulls the
     // direction back (d(delta theta)/ds = -(g/f) Re(w e*) delta theta); it errs each force by at most that times f.
+    // And the quadrature's.
     const double pull = n[1].W_abs > 0.0 ? n[1].W_abs * dot(n[1].w_hat, e_at[1]) : 0.0;
     drift = drift * std::exp(std::clamp(-pull * step * stop, -50.0, 2.0)) + err;
-    error += 2.0 * drift * integral;
+    error += 2.0 * drift * integral + stop * quad_err;
     e = e6;
     s += step;
     n0 = nE;
     if (stop < 1.0)
       break;
-    const double over = std::max({ err * f_max / density, err / kMaxTurnError, 1e-300 });
     h = step * std::clamp(0.9 * std::pow(1.0 / over, smooth ? 1.0 / 7.0 : 0.2), 0.2, 4.0);
   }
-  if (!end.re_adheres)
-    end.tau = std::min(stop_tau, L);
-  if (out)
-  {
-    if (!end.re_adheres && end.tau >= L && tail > 0.0)
-    {
-      out->force += tail * end.direction;
-      out->moment += tail * cross(tail_arm, end.direction);
-      error += 2.0 * tail;
-    }
-    out->sliding += end.tau - std::max(start.tau, 0.0);
-    out->utilisation2 = 1.0;
-    out->error += error;
-  }
-  return end;
+  return finish(0.0);
 }
 }  // namespace
 
@@ -545,7 +559,7 @@ SlideEnd slideCoulomb(PathContext& ctx, const SlideStart& start)
 {
   const int piece = ctx.addPiece(start.tau, ctx.path.length, false, start.direction);
   CoulombSlider slider(ctx.field, ctx.path, ctx.tolerance);
-  const SlideEnd end = slider.run(start, ctx.path.length, &ctx.out, ctx.work_limit);
+  const SlideEnd end = slider.run(start, ctx.path.length, &ctx);
   if (piece >= 0)
     ctx.out.piece[piece].end = end.tau;
   return end;
@@ -554,7 +568,7 @@ SlideEnd slideCoulomb(PathContext& ctx, const SlideStart& start)
 cd coulombDirectionAt(const BristleField& field, const BristlePath& path, const SlideStart& start, double tau)
 {
   CoulombSlider slider(field, path, 1e-6);
-  return slider.run(start, tau, nullptr, kUnlimitedWork).direction;
+  return slider.run(start, tau, nullptr).direction;
 }
 
 }  // namespace sphere_contact_estimator::path

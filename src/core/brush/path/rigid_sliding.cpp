@@ -35,6 +35,13 @@ public:
       return;
     out_.sliding += b - a;
     out_.utilisation2 = 1.0;
+    integrate(a, b);
+  }
+
+  void integrate(double a, double b)
+  {
+    if (!(b > a))
+      return;
     // the integrand's nearest complex singularity: where w(z(tau)) = 0 (its modulus has a branch point)
     cd star(1e300, 1e300);
     if (f_.phi != 0.0)
@@ -234,6 +241,11 @@ private:
 void slideRigid(PathContext& ctx, double a, double b)
 {
   RigidSlider(ctx).slide(a, b);
+}
+
+void integrateRigid(PathContext& ctx, double a, double b)
+{
+  RigidSlider(ctx).integrate(a, b);
 }
 
 cd rigidSlidingDeflection(const BristleField& field, const BristlePath& path, double tau)
