@@ -14,8 +14,9 @@
 
 namespace sphere_contact_estimator::test
 {
-/// The paper's Fig. 4 set: F_z = 3000 N, a = 0.05 m, k = 1.023e8 N/m^3, mu = 1, parabolic pressure.
-inline BrushParameters figure4Parameters(bool tilt = false, int resolution = 32)
+/// The paper's Fig. 4 set: F_z = 3000 N, a = 0.05 m, k = 1.023e8 N/m^3, mu = 1, parabolic pressure; the law of the
+/// sliding direction as given (the paper drew Fig. 4 with the rigid one).
+inline BrushParameters figure4Parameters(bool tilt = false, int resolution = 32, SlidingLaw law = SlidingLaw::Coulomb)
 {
   BrushParameters p;
   p.a = 0.05;
@@ -24,16 +25,21 @@ inline BrushParameters figure4Parameters(bool tilt = false, int resolution = 32)
   p.mu = 1.0;
   p.tilt = tilt;
   p.resolution = resolution;
+  p.sliding_law = law;
   return p;
 }
 
+/// Both laws, for tests of what holds under either.
+constexpr SlidingLaw kSlidingLaws[] = { SlidingLaw::Coulomb, SlidingLaw::Rigid };
+
 /// The brush parameters of the envelope the random tests draw from (issue 11): a = 0.01-0.08 m, F_z = 20-5000 N
 /// (log-uniform), mu = 0.2-1.2, k = 10^6.5-10^9 N/m^3 (log-uniform), drawn in that order from rng; the pressure
-/// cycles with i, tilt alternates every three.
-inline BrushParameters drawEnvelopeParameters(std::mt19937_64& rng, int i)
+/// cycles with i, tilt alternates every three; the sliding law as given.
+inline BrushParameters drawEnvelopeParameters(std::mt19937_64& rng, int i, SlidingLaw law = SlidingLaw::Coulomb)
 {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   BrushParameters p;
+  p.sliding_law = law;
   p.a = 0.01 + 0.07 * u(rng);
   p.F_z = std::exp(std::log(20.0) + std::log(250.0) * u(rng));
   p.mu = 0.2 + u(rng);

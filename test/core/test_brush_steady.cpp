@@ -1,7 +1,7 @@
-// The steady model with limited friction, solved along the characteristics with exact events: against the
-// closed forms (eqs. 23, 51, 61-62), the full-sliding limits, an independent brute-force marcher (hard points
-// and random ones), its own error estimate on random points over the envelope, symmetry, the friction limit,
-// tilt and Assumption 4.1.
+// The steady model with limited friction, solved along the characteristics with exact events, under both sliding
+// laws: against the closed forms (eqs. 23, 51, 61-62), the full-sliding limits, independent brute-force marchers of
+// each law (hard points and random ones), the paper's example point under eq. (4b), the laws' identity without spin,
+// its own error estimate on random points over the envelope, symmetry, the friction limit, tilt and Assumption 4.1.
 
 // STL
 #include <cmath>
@@ -14,6 +14,7 @@
 
 // Package
 #include "brush_brute_force.h"
+#include "brush_coulomb_reference.h"
 #include "brush_marching.h"
 #include "brush_test_support.h"
 #include "sphere_contact_estimator/core/brush/brush_linear.h"
@@ -27,8 +28,9 @@ namespace
 {
 using test::figure4Parameters;
 using test::forceDistance;
+using test::kSlidingLaws;
 
-// The issue's example: a small zone of re-adhering bristles around a spin pole inside the patch.
+// Issue 11's example: a small zone of re-adhering bristles around a spin pole inside the patch (rigid law).
 struct Example
 {
   BrushParameters p;
@@ -40,6 +42,7 @@ struct Example
     p.F_z = 721.6240066650845;
     p.mu = 0.8447950430510605;
     p.k = 195451215.1840554;
+    p.sliding_law = SlidingLaw::Rigid;
   }
 };
 
@@ -52,10 +55,10 @@ struct RandomPoint
   double phi = 0.0, phi_gamma = 0.0, phi_psi = 0.0;
 };
 
-RandomPoint drawPoint(std::mt19937_64& rng, int i, double slip_scale = 1.0)
+RandomPoint drawPoint(std::mt19937_64& rng, int i, double slip_scale = 1.0, SlidingLaw law = SlidingLaw::Coulomb)
 {
   RandomPoint q;
-  q.p = test::drawEnvelopeParameters(rng, i);
+  q.p = test::drawEnvelopeParameters(rng, i, law);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   q.sigma = Eigen::Vector2d(0.3 * (2.0 * u(rng) - 1.0), 0.1 * (2.0 * u(rng) - 1.0)) * slip_scale;
   q.phi = (2.0 * u(rng) - 1.0) / q.p.a * slip_scale;
@@ -73,9 +76,10 @@ TEST(BrushSteady, VanishingSlidingMatchesEqs61And62)
   // M_z (BrushLinear). With the uniform pressure small slips slide nowhere (the bound is mu F_z / (pi a^2 k) up
   // to the edge): exact. With the parabolic one a band at the trailing edge always slides, ~1e-6 of the force
   // here.
+  for (auto law : kSlidingLaws)
   for (auto pressure : { PressureDistribution::Uniform, PressureDistribution::Parabolic })
   {
-    BrushParameters p = figure4Parameters();
+    BrushParameters p = figure4Parameters(false, 32, law);
     p.pressure = pressure;
     if (pressure == PressureDistribution::Parabolic)
       p.mu = 1e6;
@@ -103,6 +107,9 @@ TEST(BrushSteady, VanishingSlidingMatchesEq51)
   const double phi = 3.33, chi = 0.9;
   BrushParameters p = figure4Parameters(true);
   p.mu = 1e6;
+  for (auto law : kSlidingLaws)
+  {
+  p.sliding_law = law;
   const BrushForces f = BrushSteady(p).evaluate(sigma, phi, chi * phi, (1 - chi) * phi, 1e-9);
   const BrushForces g = test::integrateField(
       [&](const Eigen::Vector2d& x) { return brush_closed_form::steadyTilting(x, p.a, sigma, chi * phi, (1 - chi) * phi); },
@@ -111,16 +118,19 @@ TEST(BrushSteady, VanishingSlidingMatchesEq51)
   EXPECT_NEAR(f.F_x, g.F_x, 2e-5 * scale);  // the polar midpoint rule's own error
   EXPECT_NEAR(f.F_y, g.F_y, 2e-5 * scale);
   EXPECT_NEAR(f.M_z, g.M_z, 2e-5 * scale * p.a);
+  }
 }
 
 TEST(BrushSteady, FullSlidingLimits)
 {
   // Huge slip: every bristle slides against it, |F_t| = mu F_z. Pure spin: M_z = mu integral of r q_z dA,
   // 8/15 mu F_z a (parabolic), 3 pi / 16 (Hertzian), 2/3 (uniform), with the sign of phi.
+  for (auto law : kSlidingLaws)
   for (auto pressure : { PressureDistribution::Parabolic, PressureDistribution::Hertzian, PressureDistribution::Uniform })
     for (bool tilt : { false, true })
     {
-      BrushParameters p = figure4Parameters(tilt);
+      SCOPED_TRACE(toString(law));
+      BrushParameters p = figure4Parameters(tilt, 32, law);
       p.pressure = pressure;
       const BrushSteady model(p);
       const double muFz = p.mu * p.F_z;
@@ -137,7 +147,7 @@ TEST(BrushSteady, FullSlidingLimits)
     }
 }
 
-TEST(BrushSteady, TheExamplePointToItsTarget)
+TEST(BrushSteady, RigidLawTheExamplePointOfIssue11ToItsTarget)
 {
   // The converged answer (this solver at 1e-11 and an independent method agree to 1e-13 relative):
   // F_x = -28.29525733 N, F_y = 4.79225233 N, M_z = -9.71233790 N m. The old marching scheme is 1.3 % of mu F_z
@@ -157,7 +167,7 @@ TEST(BrushSteady, TheExamplePointToItsTarget)
   EXPECT_GT(std::abs(marched.F_y - 4.79225233), 0.01 * muFz);
 }
 
-TEST(BrushSteady, ConvergesMonotonicallyWithTheTargetAtTheExamplePoint)
+TEST(BrushSteady, RigidLawConvergesMonotonicallyWithTheTargetAtTheExamplePointOfIssue11)
 {
   // Each tighter target: the estimate falls, and bounds the true error (against a run at 1e-11).
   Example e;
@@ -177,7 +187,7 @@ TEST(BrushSteady, ConvergesMonotonicallyWithTheTargetAtTheExamplePoint)
   EXPECT_LT(previous, 1e-8);
 }
 
-TEST(BrushSteady, AgreesWithTheBruteForceMarcherAtHardPoints)
+TEST(BrushSteady, RigidLawAgreesWithTheBruteForceMarcherAtHardPoints)
 {
   // A slow, independent marcher (tiny steps, events bisected within each step; test/support): 8000 paths, 400
   // steps. Its own error is first order across paths, ~3e-5 of mu F_z here where a re-adhering island lies inside
@@ -203,7 +213,7 @@ TEST(BrushSteady, AgreesWithTheBruteForceMarcherAtHardPoints)
                          Hard{ "small slips", P::Parabolic, false, 2e-4, -1e-4, 0.05, 1.0 },
                          Hard{ "near full sliding", P::Parabolic, false, 0.3, 0.1, 2.0, 1.0 } })
   {
-    BrushParameters p = figure4Parameters(h.tilt);
+    BrushParameters p = figure4Parameters(h.tilt, 32, SlidingLaw::Rigid);
     p.pressure = h.pressure;
     const Eigen::Vector2d sigma(h.sx, h.sy);
     const double pg = h.chi * h.phi, pp = h.phi - pg;
@@ -215,7 +225,7 @@ TEST(BrushSteady, AgreesWithTheBruteForceMarcherAtHardPoints)
   }
 }
 
-TEST(BrushSteady, AgreesWithTheBruteForceMarcherAtRandomPoints)
+TEST(BrushSteady, RigidLawAgreesWithTheBruteForceMarcherAtRandomPoints)
 {
   // Seeded random points over the envelope, slips and spins scaled down to 1e-3 of it: the marcher with 1000
   // paths and 500 steps is within ~3e-4 of mu F_z.
@@ -224,7 +234,7 @@ TEST(BrushSteady, AgreesWithTheBruteForceMarcherAtRandomPoints)
   double worst = 0.0;
   for (int i = 0; i < 36; ++i)
   {
-    const RandomPoint q = drawPoint(rng, i, std::pow(10.0, -3.0 * u(rng)));
+    const RandomPoint q = drawPoint(rng, i, std::pow(10.0, -3.0 * u(rng)), SlidingLaw::Rigid);
     const BrushForces f = BrushSteady(q.p).evaluate(q.sigma, q.phi, q.phi_gamma, q.phi_psi, 1e-6);
     const BrushForces g = test::bruteForceSteady(q.p, q.sigma, q.phi, q.phi_gamma, q.phi_psi, 1000, 500);
     const double d = forceDistance(f, g, q.p);
@@ -237,34 +247,144 @@ TEST(BrushSteady, AgreesWithTheBruteForceMarcherAtRandomPoints)
 TEST(BrushSteady, ErrorEstimateBoundsTheErrorOnRandomPoints)
 {
   // At targets 1e-2, 1e-3 and 1e-4, on seeded random points over the envelope: the true error (against a run at
-  // 1e-8) never exceeds the target, the estimate is below the error at no more than 1 % of the points and never
-  // below half of it. (bench/brush_accuracy does the same on 1000 points per target.)
-  std::mt19937_64 rng(23);
-  const int n = 240;
-  for (double target : { 1e-2, 1e-3, 1e-4 })
+  // 1e-8) never exceeds the target, and the estimate is never below it under the Coulomb law; under the rigid law it
+  // is below the error at no more than 1 % of the points and never below half of it (its old record, measured over
+  // 7500 points per seed). bench/model_accuracy does the same on 1000 points per target and law.
+  for (auto law : kSlidingLaws)
   {
-    int below = 0;
-    double worst = 0.0;
-    std::mt19937_64 draw(rng());
-    for (int i = 0; i < n; ++i)
+    std::mt19937_64 rng(23);
+    const int n = law == SlidingLaw::Rigid ? 240 : 120;
+    for (double target : { 1e-2, 1e-3, 1e-4 })
     {
-      const RandomPoint q = drawPoint(draw, i);
-      const BrushSteady model(q.p);
-      const BrushForces ref =
-          model.evaluate(q.sigma, q.phi, q.phi_gamma, q.phi_psi, 1e-8, nullptr, BrushSteady::kReferenceWork);
-      const BrushForces f = model.evaluate(q.sigma, q.phi, q.phi_gamma, q.phi_psi, target);
-      const double error = forceDistance(f, ref, q.p);
-      worst = std::max(worst, error);
-      below += error > f.error_estimate;
-      EXPECT_LE(error, 2.0 * f.error_estimate)
-          << std::setprecision(17) << "point " << i << " target " << target << ": " << toString(q.p.pressure) << " tilt " << q.p.tilt << " a "
-          << q.p.a << " F_z " << q.p.F_z << " mu " << q.p.mu << " k " << q.p.k << " sigma " << q.sigma.transpose()
-          << " phi " << q.phi << " phi_gamma " << q.phi_gamma << " phi_psi " << q.phi_psi << " reference flags "
-          << ref.flags << " estimate " << ref.error_estimate;
-      EXPECT_LE(error, target) << "point " << i;
+      int below = 0;
+      double worst = 0.0, worst_ratio = 0.0;
+      std::mt19937_64 draw(rng());
+      for (int i = 0; i < n; ++i)
+      {
+        const RandomPoint q = drawPoint(draw, i, 1.0, law);
+        const BrushSteady model(q.p);
+        const BrushForces ref =
+            model.evaluate(q.sigma, q.phi, q.phi_gamma, q.phi_psi, 1e-8, nullptr, BrushSteady::kReferenceWork);
+        const BrushForces f = model.evaluate(q.sigma, q.phi, q.phi_gamma, q.phi_psi, target);
+        const double error = forceDistance(f, ref, q.p);
+        worst = std::max(worst, error);
+        worst_ratio = std::max(worst_ratio, error / std::max(f.error_estimate + ref.error_estimate, 1e-300));
+        below += error > f.error_estimate + ref.error_estimate;
+        const double allowed = law == SlidingLaw::Rigid ? 2.0 * f.error_estimate : f.error_estimate;
+        EXPECT_LE(error, allowed + ref.error_estimate)
+            << std::setprecision(17) << toString(law) << " point " << i << " target " << target << ": "
+            << toString(q.p.pressure) << " tilt " << q.p.tilt << " a " << q.p.a << " F_z " << q.p.F_z << " mu " << q.p.mu
+            << " k " << q.p.k << " sigma " << q.sigma.transpose() << " phi " << q.phi << " phi_gamma " << q.phi_gamma
+            << " phi_psi " << q.phi_psi << " reference flags " << ref.flags << " estimate " << ref.error_estimate;
+        EXPECT_LE(error, target) << "point " << i;
+      }
+      std::printf("%s law, target %.0e: largest error %.2e, largest error / estimate %.2f, estimate below the error at "
+                  "%d of %d points\n", toString(law), target, worst, worst_ratio, below, n);
+      EXPECT_LE(below, law == SlidingLaw::Rigid ? n / 100 : 0);
     }
-    std::printf("target %.0e: largest error %.2e, estimate below the error at %d of %d points\n", target, worst, below, n);
-    EXPECT_LE(below, n / 100);
+  }
+}
+
+// The paper's law at the issue's example point: Fig. 4's parameters, sigma = (0, 0), phi = 3.33 1/m, no tilt. Two
+// independent solvers agree on F_y = 1484.3835 N, M_z = 36.41168 N m (to 2e-7 of mu F_z); the rigid law gives
+// 996.56 N and 45.316 N m, 16 % of mu F_z apart.
+TEST(BrushSteady, CoulombLawTheExamplePointToItsTarget)
+{
+  BrushParameters p = figure4Parameters();
+  p.accuracy_target = 1e-4;
+  const double muFz = p.mu * p.F_z;
+  const BrushForces f = BrushSteady(p).update(ContactKinematics::fromSlips({ 0.0, 0.0 }, 3.33, 1.0, 1.0), 0.0);
+  EXPECT_NEAR(f.F_x, 0.0, 1e-4 * muFz);
+  EXPECT_NEAR(f.F_y, 1484.3835, 1e-4 * muFz);
+  EXPECT_NEAR(f.M_z, 36.41168, 1e-4 * muFz * p.a);
+  EXPECT_LE(f.error_estimate, 1e-4);
+  p.sliding_law = SlidingLaw::Rigid;
+  const BrushForces r = BrushSteady(p).evaluate({ 0.0, 0.0 }, 3.33, 0.0, 0.0, 1e-6);
+  EXPECT_NEAR(r.F_y, 996.56, 0.01);
+  EXPECT_NEAR(r.M_z, 45.316, 0.001);
+  EXPECT_GT(std::abs(f.F_y - r.F_y), 0.15 * muFz);
+}
+
+TEST(BrushSteady, CoulombLawConvergesMonotonicallyWithTheTargetAtTheExamplePoint)
+{
+  // Each tighter target: the estimate falls, stays within the target, and bounds the true error (against the quoted
+  // values, whose last digits are 1.7e-8 of mu F_z).
+  const BrushParameters p = figure4Parameters();
+  const BrushSteady model(p);
+  const double muFz = p.mu * p.F_z;
+  double previous = INFINITY;
+  for (double target : { 1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7 })
+  {
+    const BrushForces f = model.evaluate({ 0.0, 0.0 }, 3.33, 0.0, 0.0, target, nullptr, BrushSteady::kReferenceWork);
+    const double error = std::max({ std::abs(f.F_x), std::abs(f.F_y - 1484.3835), std::abs(f.M_z - 36.41168) / p.a }) / muFz;
+    std::printf("Coulomb example point, target %.0e: error %.2e, estimate %.2e\n", target, error, f.error_estimate);
+    EXPECT_LE(error, f.error_estimate + 2e-8) << target;
+    EXPECT_LE(f.error_estimate, target) << target;
+    EXPECT_LE(f.error_estimate, previous) << target;
+    previous = f.error_estimate;
+  }
+}
+
+TEST(BrushSteady, TheLawsAgreeWithoutSpin)
+{
+  // One drive direction along every path: the sliding bristle lies along it under either law (docs/conventions.md),
+  // to rounding, at random slips from vanishing to full sliding, all pressures, tilt on and off (straight paths).
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  double worst = 0.0;
+  for (int i = 0; i < 90; ++i)
+  {
+    BrushParameters p = figure4Parameters(i % 2 == 1, 32, SlidingLaw::Rigid);
+    p.pressure = static_cast<PressureDistribution>(i % 3);
+    const double scale = std::pow(10.0, 3.0 * u(rng) - 1.5);
+    const Eigen::Vector2d sigma(scale * u(rng), scale * u(rng));
+    const BrushForces r = BrushSteady(p).evaluate(sigma, 0.0, 0.0, 0.0, 1e-9);
+    p.sliding_law = SlidingLaw::Coulomb;
+    const BrushForces c = BrushSteady(p).evaluate(sigma, 0.0, 0.0, 0.0, 1e-9);
+    const double d = forceDistance(c, r, p);
+    worst = std::max(worst, d);
+    EXPECT_LE(d, 1e-12) << toString(p.pressure) << " sigma " << sigma.transpose();
+    EXPECT_NEAR(c.sliding_fraction, r.sliding_fraction, 1e-12);
+  }
+  std::printf("without spin, Coulomb - rigid: largest %.1e of mu F_z over 90 points\n", worst);
+}
+
+TEST(BrushSteady, CoulombLawAgreesWithTheBruteForceMarcherAtHardPoints)
+{
+  // The independent marcher of eq. (4b) (the trial deflection scaled back onto the bound, tiny steps, Richardson
+  // along the paths; test/support), with its own error estimate, at the points of the rigid law's test.
+  struct Hard
+  {
+    const char* name;
+    PressureDistribution pressure;
+    bool tilt;
+    double sx, sy, phi, chi;
+  };
+  using P = PressureDistribution;
+  for (const Hard& h : { Hard{ "spin against slip", P::Parabolic, false, 0.0, -0.05, 10.0, 1.0 },
+                         Hard{ "slip and spin", P::Parabolic, false, 0.05, 0.02, 3.33, 1.0 },
+                         Hard{ "slip, spin, tilt", P::Parabolic, true, 0.05, 0.02, 3.33, 0.9 },
+                         Hard{ "pole in front, tilt", P::Parabolic, true, -0.002, -0.004, -8.0, 0.3 },
+                         Hard{ "tilting radius 1.05 a", P::Parabolic, true, 0.01, 0.005, 19.0, 1.0 },
+                         Hard{ "turn coupling only", P::Parabolic, true, 0.02, 0.01, 12.0, 0.0 },
+                         Hard{ "Hertzian, pole in front", P::Hertzian, false, -0.003, -0.002, -6.0, 1.0 },
+                         Hard{ "Hertzian, tilt", P::Hertzian, true, 0.03, -0.01, 5.0, 0.7 },
+                         Hard{ "uniform, slip and spin", P::Uniform, false, 0.02, 0.01, 5.0, 1.0 },
+                         Hard{ "uniform, tilt", P::Uniform, true, -0.01, 0.02, -7.0, 1.2 },
+                         Hard{ "small slips", P::Parabolic, false, 2e-4, -1e-4, 0.05, 1.0 },
+                         Hard{ "near full sliding", P::Parabolic, false, 0.3, 0.1, 2.0, 1.0 } })
+  {
+    BrushParameters p = figure4Parameters(h.tilt);
+    p.pressure = h.pressure;
+    const Eigen::Vector2d sigma(h.sx, h.sy);
+    const double pg = h.chi * h.phi, pp = h.phi - pg;
+    const BrushForces f = BrushSteady(p).evaluate(sigma, h.phi, pg, pp, 1e-6, nullptr, BrushSteady::kReferenceWork);
+    const test::CoulombReference g = test::coulombReference(p, sigma, h.phi, pg, pp, 400, 800);
+    const double d = forceDistance(f, g.forces, p);
+    std::printf("%s: steady - Coulomb marcher %.1e of mu F_z (estimates %.1e, %.1e)\n", h.name, d, f.error_estimate,
+                g.error);
+    EXPECT_LE(d, f.error_estimate + g.error) << h.name;
+    EXPECT_LT(d, 1e-4) << h.name;
   }
 }
 
@@ -288,9 +408,10 @@ TEST(BrushSteady, FindsTheReAdhesionRegionAroundThePole)
 TEST(BrushSteady, MirrorSymmetry)
 {
   // Reflecting y -> -y maps (sigma_y, phi) to (-sigma_y, -phi) and flips F_y and M_z, keeps F_x.
+  for (auto law : kSlidingLaws)
   for (bool tilt : { false, true })
   {
-    const BrushSteady model(figure4Parameters(tilt));
+    const BrushSteady model(figure4Parameters(tilt, 32, law));
     for (const auto& [sx, sy, phi] : { std::tuple{ 0.1, 0.05, 3.33 }, { -0.3, 0.2, -8.0 }, { 0.02, -0.01, 1.0 } })
     {
       const BrushForces a = model.evaluate({ sx, sy }, phi, 0.9 * phi, 0.1 * phi, 1e-9);
@@ -308,9 +429,10 @@ TEST(BrushSteady, NeverExceedsTheFrictionLimit)
   // |F_t| <= mu F_z holds bristle by bristle, so at every input; huge slips saturate onto the circle.
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (auto law : kSlidingLaws)
   for (bool tilt : { false, true })
   {
-    const BrushParameters p = figure4Parameters(tilt);
+    const BrushParameters p = figure4Parameters(tilt, 32, law);
     const BrushSteady model(p);
     for (int i = 0; i < 300; ++i)
     {
@@ -376,8 +498,8 @@ TEST(BrushSteady, CappingAlongThePathIsNotPointwiseClipping)
 {
   // docs/conventions.md: with spin, bristles that slid near the leading edge re-adhere from their capped
   // deflection, so clipping the unbounded eq. 23 field point by point is a different model, off by
-  // several per cent of mu F_z. Without spin the two agree.
-  const BrushParameters p = figure4Parameters(false);
+  // several per cent of mu F_z. Without spin the two agree. (The rigid law, whose direction the clipping takes.)
+  const BrushParameters p = figure4Parameters(false, 32, SlidingLaw::Rigid);
   const FrictionCap cap(p);
   const auto clipped = [&](const Eigen::Vector2d& sigma, double phi) {
     return test::integrateField(
@@ -443,9 +565,11 @@ TEST(BrushSteady, ErrorEstimateCoversFoldsAndBandsBesideBreakpoints)
     { PressureDistribution::Uniform, false, 0.047640289549478985, 2689.4965664987849, 0.41837896705410282,
       16703389.274273353, -0.246526055458062, -0.096396833114856542, -8.0456130401204433, 0.67182074041258266 },
   };
+  for (auto law : kSlidingLaws)
   for (const Case& c : cases)
   {
     BrushParameters p;
+    p.sliding_law = law;
     p.pressure = c.pressure;
     p.tilt = c.tilt;
     p.a = c.a;
@@ -459,7 +583,7 @@ TEST(BrushSteady, ErrorEstimateCoversFoldsAndBandsBesideBreakpoints)
     ASSERT_FALSE(ref.flags & brush_flags::kAccuracyNotMet);
     for (double target : { 1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 1e-5 })
     {
-      SCOPED_TRACE(::testing::Message() << "a " << c.a << " target " << target);
+      SCOPED_TRACE(::testing::Message() << toString(law) << " a " << c.a << " target " << target);
       const BrushForces f = model.evaluate(sigma, c.phi, pg, pp, target);
       EXPECT_LE(forceDistance(f, ref, p), f.error_estimate + ref.error_estimate);
       EXPECT_LE(f.error_estimate, target);
@@ -481,10 +605,12 @@ TEST(BrushSteady, TinySlipsConvergeAtOnce)
   p.tilt = true;
   const Eigen::Vector2d sigma(2.39884e-07, -4.667e-07);
   const double phi = 8.20197, phi_gamma = 16.4039, phi_psi = -8.20197;
+  for (auto law : kSlidingLaws)
   for (const PressureDistribution pressure :
        { PressureDistribution::Parabolic, PressureDistribution::Hertzian, PressureDistribution::Uniform })
   {
-    SCOPED_TRACE(static_cast<int>(pressure));
+    SCOPED_TRACE(::testing::Message() << toString(law) << " " << static_cast<int>(pressure));
+    p.sliding_law = law;
     p.pressure = pressure;
     BrushSteady::Stats stats;
     const BrushForces f = BrushSteady(p).evaluate(sigma, phi, phi_gamma, phi_psi, 0.01, &stats);

@@ -73,6 +73,7 @@ public:
   {
     // where two structures meet, bisection stops at a width whose bound is a small part of the tolerance
     delta_ = std::max(1e-13, 1e-3 * tolerance / (2.0 * std::max(bound_, 1e-300)));
+    continuous_ = field.law == SlidingLaw::Coulomb;
   }
 
   PatchIntegral run()
@@ -268,7 +269,7 @@ private:
         for (int c = 0; c < 4; ++c)
           g.K[c] = 0.5 * w * (gaps[k].first.v[c] + gaps[k].second.v[c]);
         for (int c = 0; c < 3; ++c)
-          g.E[c] = 2.0 * w * bound_;
+          g.E[c] = gapBound(gaps[k].first, gaps[k].second, c);
         push(g);
         from = g.b;
       }
@@ -349,12 +350,27 @@ private:
     return best > 0.0;
   }
 
-  // Bisection on the event structure between two samples that differ, down to delta_.
+  // What a located change of structure between two samples may hold. Under the rigid law the integrand jumps there:
+  // any value the integrand's bound allows. Under eq. (4b) the field, and so each path's integrals, is continuous
+  // across the paths (a sliding bristle's direction turns no faster than its tip moves; a touch of the bound slides
+  // for no travel): the change between the two samples, and their own errors, over the gap's width.
+  double gapBound(const Sample& lo, const Sample& hi, int c) const
+  {
+    const double w = hi.theta - lo.theta;
+    if (!continuous_)
+      return 2.0 * w * bound_;
+    return w * (std::abs(hi.v[c] - lo.v[c]) + lo.error + hi.error);
+  }
+
+  // Bisection on the event structure between two samples that differ, down to delta_, or, where the integrand is
+  // continuous, until the gap's bound is a small part of the tolerance.
   void locate(const Sample& lo, const Sample& hi, std::pair<Sample, Sample>* gaps, int& ng)
   {
     if (ng >= kMaxGaps)
       return;
-    if (hi.theta - lo.theta <= delta_ || spent())
+    const bool small = continuous_ && std::max({ gapBound(lo, hi, 0), gapBound(lo, hi, 1), gapBound(lo, hi, 2) }) <=
+                                          tol_ / (4.0 * kMaxGaps);
+    if (hi.theta - lo.theta <= delta_ || spent() || small)
     {
       gaps[ng++] = { lo, hi };
       return;
@@ -378,6 +394,7 @@ private:
   long max_work_;
   long work_ = 0;
   double path_tol_, bound_, delta_;
+  bool continuous_ = false;  // the integrand is continuous across the paths (SlidingLaw::Coulomb)
   std::array<Interval, kMaxIntervals> iv_;
   Interval pool_{};  // the intervals beyond kMaxIntervals (push)
   int n_ = 0;

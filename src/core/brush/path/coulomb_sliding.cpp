@@ -3,7 +3,9 @@
 
 // STL
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 
 namespace sphere_contact_estimator::path
 {
@@ -13,6 +15,8 @@ constexpr int kMaxSteps = 4000;      // attempted steps per piece; beyond, the p
 constexpr long kStepWork = 80;       // four nodes and two 2x2 exponentials (PathIntegrals::work units)
 constexpr double kEdgeShare = 1e-2;  // of the tolerance: what the unintegrated ends of a piece may hold
 constexpr double kMaxTurnError = 1e-2;  // rad per step, wherever the bound is: the events read the direction
+constexpr double kStiffStep = 8.0;  // W h beyond which a relaxed direction follows the slow manifold (Magnus: h < pi / W)
+constexpr double kRelaxed = 1e-3;   // rad off the slow manifold: relaxed
 // The sixth-order step's error against the difference d of the fourth- and sixth-order ones: both errors scale with
 // powers of (|B| h), h^7 and h^5, so err6 ~ c d^(7/5) with c independent of the scale; c = 1.6 - 3.9 measured over
 // steps of 0.2 - 1.6 on full-sliding paths (docs/benchmarks.md), taken 10.
@@ -22,6 +26,39 @@ constexpr double kSixthOrder = 10.0;
 constexpr double kHalfSpread = 0.3872983346207417;  // sqrt(15) / 10
 constexpr double kC[3] = { 0.5 - kHalfSpread, 0.5, 0.5 + kHalfSpread };
 constexpr double kW[3] = { 5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0 };
+
+// The quartic through a step's five points x = 0, the three Gauss nodes, 1: its value at x as weights of the five
+// values, and its derivative (in x) at each of them.
+constexpr double kFive[5] = { 0.0, kC[0], kC[1], kC[2], 1.0 };
+double quarticValue(double x, int k)
+{
+  double v = 1.0;
+  for (int j = 0; j < 5; ++j)
+    if (j != k)
+      v *= (x - kFive[j]) / (kFive[k] - kFive[j]);
+  return v;
+}
+const auto kQuarticSlope = [] {
+  std::array<std::array<double, 5>, 5> d{};
+  for (int i = 0; i < 5; ++i)
+    for (int k = 0; k < 5; ++k)
+    {
+      // d/dx of the k-th Lagrange basis polynomial at x_i
+      double sum = 0.0;
+      for (int m = 0; m < 5; ++m)
+      {
+        if (m == k)
+          continue;
+        double term = 1.0 / (kFive[k] - kFive[m]);
+        for (int j = 0; j < 5; ++j)
+          if (j != k && j != m)
+            term *= (kFive[i] - kFive[j]) / (kFive[k] - kFive[j]);
+        sum += term;
+      }
+      d[i][k] = sum;
+    }
+  return d;
+}();
 
 /// A real 2x2 matrix [[a, b], [c, d]].
 struct Mat
@@ -388,32 +425,82 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
       f_max = std::max(f_max, x.f);
     }
     in_drive = in_drive && K_max <= W_max;
+    // In the drive's frame, where the law pulls the bristle onto the drive much faster than the step is long (W h beyond
+    // the Magnus series' reach, pi) and the direction has relaxed onto it: the slow manifold of Delta' = Kd - W sin Delta,
+    // an expansion in 1 / W, Delta* = arcsin((Kd - D0') / W) with D0 = arcsin(Kd / W); its last term, halved, bounds the
+    // next. What is left of the start's deviation decays at the law's rate W cos Delta*.
+    const double W_min = std::min({ n0.W_abs, n[0].W_abs, n[1].W_abs, n[2].W_abs, nE.W_abs });
+    bool quasi = in_drive && W_min * step >= kStiffStep;
+    double qs_err = 0.0, eta0 = 0.0, lambda = 0.0;
+    // the five points of the step, x = 0, the three Gauss nodes, 1 (the quartic through them interpolates Delta*)
+    const Node* at5[5] = { &n0, &n[0], &n[1], &n[2], &nE };
+    double manifold[5] = {};
+    if (quasi)
+    {
+      // three terms: D0 = arcsin(Kd / W), D1 = arcsin((Kd - D0') / W), D2 = arcsin((Kd - D1') / W), D0' exact from the
+      // nodes' derivatives, D1' from the quartic through the five points; the next term is estimated from the last two
+      // (it is smaller by their ratio, about 1 / (W l), l the inputs' scale)
+      double d0[5], d1[5];
+      for (int j = 0; j < 5 && quasi; ++j)
+      {
+        const Node& x = *at5[j];
+        const double r = x.Kd / x.W_abs;
+        const double r_s = (x.Kd_s * x.W_abs - x.Kd * x.W_abs_s) / (x.W_abs * x.W_abs);
+        const double r1 = std::abs(r) < 0.5 ? (x.Kd - r_s / std::sqrt(1.0 - r * r)) / x.W_abs : 1.0;
+        quasi = std::abs(r1) < 0.5;
+        if (quasi)
+        {
+          d0[j] = std::asin(r);
+          d1[j] = std::asin(r1);
+        }
+      }
+      double term1 = 0.0, term2 = 0.0;
+      for (int j = 0; j < 5 && quasi; ++j)
+      {
+        double d1_x = 0.0;
+        for (int k = 0; k < 5; ++k)
+          d1_x += kQuarticSlope[j][k] * d1[k];
+        const double r2 = (at5[j]->Kd - d1_x / step) / at5[j]->W_abs;
+        quasi = std::abs(r2) < 0.5;
+        manifold[j] = std::asin(r2);
+        term1 = std::max(term1, std::abs(d1[j] - d0[j]));
+        term2 = std::max(term2, std::abs(manifold[j] - d1[j]));
+      }
+      qs_err = term2 * std::min(1.0, 3.0 * term2 / std::max(term1, 1e-300));
+      if (quasi)
+      {
+        eta0 = std::arg(e * std::conj(n0.w_hat) * std::polar(1.0, -manifold[0]));
+        lambda = n0.W_abs * std::cos(manifold[0]);
+        quasi = std::abs(eta0) <= kRelaxed && lambda * step >= kStiffStep;
+      }
+    }
+    cd e6;
+    double de = 0.0, err = 0.0;
+    bool smooth = false;
+    std::function<cd(double, const Node&)> inside;
+    if (quasi)
+    {
+      e6 = std::polar(1.0, manifold[4] + eta0 * std::exp(-lambda * step)) * nE.w_hat;
+      // the manifold's next term, and the transient's share of the step, which the Gauss nodes integrate roughly
+      err = qs_err + std::abs(eta0) / (lambda * step);
+      de = err;
+      smooth = true;
+      inside = [&](double x, const Node& at) {
+        double value = 0.0;
+        for (int k = 0; k < 5; ++k)
+          value += quarticValue(x, k) * manifold[k];
+        return std::polar(1.0, value + eta0 * std::exp(-lambda * x * step)) * at.w_hat;
+      };
+    }
     // sixth- and fourth-order Magnus approximations of the step's log from the same Gauss nodes
     const Mat& B1 = in_drive ? n[0].Bd : n[0].B;
     const Mat& B2 = in_drive ? n[1].Bd : n[1].B;
     const Mat& B3 = in_drive ? n[2].Bd : n[2].B;
-    const Mat a1 = step * B2, a2 = (1.2909944487358056 * step) * (B3 - B1) /* sqrt(15) / 3 */,
-              a3 = (10.0 * step / 3.0) * (B3 - 2.0 * B2 + B1);
-    const Mat c1 = commutator(a1, a2);
-    const Mat c2 = (-1.0 / 60.0) * commutator(a1, 2.0 * a3 + c1);
-    const Mat base = a1 + (1.0 / 12.0) * a3;
-    const Mat omega6 = base + (1.0 / 240.0) * commutator(-20.0 * a1 - a3 + c1, a2 + c2);
-    const Mat omega4 = base - (1.0 / 12.0) * c1;
     const cd frame0 = in_drive ? n0.w_hat : cd(1.0, 0.0), frame1 = in_drive ? nE.w_hat : cd(1.0, 0.0);
     const Vec v0 = halfAngle(e * std::conj(frame0));
-    const Vec v6 = applyExp(omega6, v0), v4 = applyExp(omega4, v0);
-    const cd e6 = direction(v6) * frame1;
-    const double de = std::sqrt(std::norm(e6 - direction(v4) * frame1));
-    // The direction inside the step. In the drive's frame: the quintic Hermite interpolant of Delta from its value and
-    // first two derivatives at both ends (sixth order). Where that does not hold (a fast transient) or in the patch's
-    // frame: from the start by the fourth-order Magnus approximation over [0, x h] of the quadratic through the nodes,
-    // B(y) = P0 + P1 (y - 1/2) + P2 (y - 1/2)^2.
-    const double delta0 = angleOf(v0);
-    const double delta1 = delta0 + std::arg(direction(v6) * std::conj(direction(v0)));
-    const double y0 = delta0, y1 = delta1, p0 = step * slopeOf(n0, y0), p1 = step * slopeOf(nE, y1),
-                 q0 = step * step * curvatureOf(n0, y0), q1 = step * step * curvatureOf(nE, y1);
     const Mat P0 = B2, P1 = (0.5 / kHalfSpread) * (B3 - B1),
               P2 = (0.5 / (kHalfSpread * kHalfSpread)) * (B3 - 2.0 * B2 + B1);
+    double y0 = 0.0, y1 = 0.0, p0 = 0.0, p1 = 0.0, q0 = 0.0, q1 = 0.0;
     const auto magnus = [&](double x) {
       const double y = x - 0.5, ym = 0.5 * x - 0.5;
       const Mat integral = x * P0 + (0.5 * (y * y - 0.25)) * P1 + ((y * y * y + 0.125) / 3.0) * P2;
@@ -426,14 +513,36 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
              (0.5 * x2 - 1.5 * x3 + 1.5 * x4 - 0.5 * x5) * q0 + (10.0 * x3 - 15.0 * x4 + 6.0 * x5) * y1 +
              (-4.0 * x3 + 7.0 * x4 - 3.0 * x5) * p1 + (0.5 * x3 - x4 + 0.5 * x5) * q1;
     };
-    bool smooth = in_drive;
-    if (smooth)
-      smooth = std::norm(magnus(0.5) - std::polar(1.0, hermite(0.5))) <= std::max(de * de, 1e-26);
-    const auto inside = [&](double x, const Node& at) {
-      if (smooth)
-        return std::polar(1.0, hermite(x)) * at.w_hat;
-      return in_drive ? magnus(x) * at.w_hat : magnus(x);
-    };
+    if (!quasi)
+    {
+      const Mat a1 = step * B2, a2 = (1.2909944487358056 * step) * (B3 - B1) /* sqrt(15) / 3 */,
+                a3 = (10.0 * step / 3.0) * (B3 - 2.0 * B2 + B1);
+      const Mat c1 = commutator(a1, a2);
+      const Mat c2 = (-1.0 / 60.0) * commutator(a1, 2.0 * a3 + c1);
+      const Mat base = a1 + (1.0 / 12.0) * a3;
+      const Mat omega6 = base + (1.0 / 240.0) * commutator(-20.0 * a1 - a3 + c1, a2 + c2);
+      const Mat omega4 = base - (1.0 / 12.0) * c1;
+      const Vec v6 = applyExp(omega6, v0), v4 = applyExp(omega4, v0);
+      e6 = direction(v6) * frame1;
+      de = std::sqrt(std::norm(e6 - direction(v4) * frame1));
+      // The direction inside the step. In the drive's frame: the quintic Hermite interpolant of Delta from its value
+      // and first two derivatives at both ends (sixth order). Where that does not hold (a fast transient) or in the
+      // patch's frame: from the start by the fourth-order Magnus approximation over [0, x h] of the quadratic through
+      // the nodes, B(y) = P0 + P1 (y - 1/2) + P2 (y - 1/2)^2.
+      y0 = angleOf(v0);
+      y1 = y0 + std::arg(direction(v6) * std::conj(direction(v0)));
+      p0 = step * slopeOf(n0, y0);
+      p1 = step * slopeOf(nE, y1);
+      q0 = step * step * curvatureOf(n0, y0);
+      q1 = step * step * curvatureOf(nE, y1);
+      smooth = in_drive && std::norm(magnus(0.5) - std::polar(1.0, hermite(0.5))) <= std::max(de * de, 1e-26);
+      err = smooth ? kSixthOrder * std::pow(de, 1.4) : de;
+      inside = [&](double x, const Node& at) {
+        if (smooth)
+          return std::polar(1.0, hermite(x)) * at.w_hat;
+        return in_drive ? magnus(x) * at.w_hat : magnus(x);
+      };
+    }
     cd e_at[3];
     for (int j = 0; j < 3; ++j)
       e_at[j] = inside(kC[j], n[j]);
@@ -455,12 +564,11 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     const double quad_err = std::max(std::sqrt(std::norm(gauss_f - step / 6.0 * (qf0 + 4.0 * qf[1] + qfE))),
                                      std::abs(gauss_m - step / 6.0 * (qm0 + 4.0 * qm[1] + qmE)));
     const double travel = nE.tau - n0.tau;
-    const double err = smooth ? kSixthOrder * std::pow(de, 1.4) : de;
     // the direction must stay resolved even where the bound is too small for its forces to count: the events read it
     const double over = std::max({ err * f_max / density, err / kMaxTurnError, quad_err / (density * travel), 1e-300 });
     if (over > 1.0 && step > 1e-9 * (1.0 + std::abs(s)))
     {
-      h = step * std::max(0.2, 0.9 * std::pow(1.0 / over, smooth ? 1.0 / 7.0 : 0.2));
+      h = step * std::max(0.2, 0.9 * std::pow(1.0 / over, smooth && !quasi ? 1.0 / 7.0 : 0.2));
       continue;
     }
     // re-adhesion: the first sample where the bristle is no longer pushed outward faster than the bound grows
@@ -549,7 +657,7 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     n0 = nE;
     if (stop < 1.0)
       break;
-    h = step * std::clamp(0.9 * std::pow(1.0 / over, smooth ? 1.0 / 7.0 : 0.2), 0.2, 4.0);
+    h = step * std::clamp(0.9 * std::pow(1.0 / over, smooth && !quasi ? 1.0 / 7.0 : 0.2), 0.2, 4.0);
   }
   return finish(0.0);
 }
