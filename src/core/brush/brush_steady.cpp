@@ -78,6 +78,7 @@ BrushForces BrushSteady::solve(const Eigen::Vector2d& sigma, double phi, double 
       const long work = I.work;
       I = looser;
       I.work += work;
+      I.converged = I.error <= tolerance / scale;  // against the tolerance asked for, not the looser one
     }
   }
   if (stats)

@@ -16,7 +16,8 @@ constexpr long kStepWork = 80;       // four nodes and two 2x2 exponentials (Pat
 constexpr double kEdgeShare = 1e-2;  // of the tolerance: what the unintegrated ends of a piece may hold
 constexpr double kMaxTurnError = 1e-2;  // rad per step, wherever the bound is: the events read the direction
 constexpr double kStiffStep = 8.0;  // W h beyond which a relaxed direction follows the slow manifold (Magnus: h < pi / W)
-constexpr double kRelaxed = 1e-3;   // rad off the slow manifold: relaxed
+constexpr double kMagnusReach = 2.0;  // W h within which the sixth-order step's error follows d^(7/5)
+constexpr double kRelaxed = 0.2;    // rad off the slow manifold: relaxed enough that the rest decays as if linear
 // The sixth-order step's error against the difference d of the fourth- and sixth-order ones: both errors scale with
 // powers of (|B| h), h^7 and h^5, so err6 ~ c d^(7/5) with c independent of the scale; c = 1.6 - 3.9 measured over
 // steps of 0.2 - 1.6 on full-sliding paths (docs/benchmarks.md), taken 10.
@@ -180,6 +181,9 @@ public:
   }
   /// s of the trailing edge (infinite for m = 2).
   double end() const { return m_ == 2 ? INFINITY : (m_ == 1 ? M_PI : L_); }
+  /// The longest step: the map's own scale, over which f and g change by O(1), so that the steps' Gauss rule and the
+  /// error estimates beside it (Simpson's, the quartic through a step's points) see a smooth integrand.
+  double longestStep() const { return m_ == 2 ? 1.0 : (m_ == 1 ? 0.3 : 0.15 * L_); }
 
 private:
   int m_;
@@ -392,6 +396,7 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     }
   }
   bool armed = start.armed;
+  int quasi_refused = 5;  // steps since the slow manifold last served (a refused attempt waits a few steps to retry)
   double drift = 0.0;                                 // direction error carried into later steps
   const double density = tol_ / std::max(L, 1e-12);  // error allowed per unit travel
   double h = std::isfinite(map_.end()) ? 0.1 * (map_.end() - s0) : 0.5;
@@ -409,7 +414,7 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     }
     if (out)
       out->work += kStepWork;
-    const double step = std::min(h, s_end - s);
+    const double step = std::min({ h, s_end - s, map_.longestStep() });
     const bool last = step >= s_end - s;
     const Node n[3] = { node(s + kC[0] * step), node(s + kC[1] * step), node(s + kC[2] * step) };
     const Node nE = node(s + step);
@@ -481,15 +486,17 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     if (quasi)
     {
       e6 = std::polar(1.0, manifold[4] + eta0 * std::exp(-lambda * step)) * nE.w_hat;
-      // the manifold's next term, and the transient's share of the step, which the Gauss nodes integrate roughly
-      err = qs_err + std::abs(eta0) / (lambda * step);
+      // The manifold's next term; and the start's deviation eta0, integrated below in closed form to first order
+      // (it decays within 1 / lambda << h): its second-order part and the change of f g over its decay, per unit of f
+      // over the step.
+      err = qs_err + std::abs(eta0) * (std::abs(eta0) + 1.0 / lambda) / (lambda * step);
       de = err;
       smooth = true;
       inside = [&](double x, const Node& at) {
         double value = 0.0;
         for (int k = 0; k < 5; ++k)
           value += quarticValue(x, k) * manifold[k];
-        return std::polar(1.0, value + eta0 * std::exp(-lambda * x * step)) * at.w_hat;
+        return std::polar(1.0, value) * at.w_hat;
       };
     }
     // sixth- and fourth-order Magnus approximations of the step's log from the same Gauss nodes
@@ -536,7 +543,8 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
       q0 = step * step * curvatureOf(n0, y0);
       q1 = step * step * curvatureOf(nE, y1);
       smooth = in_drive && std::norm(magnus(0.5) - std::polar(1.0, hermite(0.5))) <= std::max(de * de, 1e-26);
-      err = smooth ? kSixthOrder * std::pow(de, 1.4) : de;
+      // the sixth-order error model holds within the Magnus series' reach (W h well below pi); beyond, the difference
+      err = smooth && W_max * step <= kMagnusReach ? kSixthOrder * std::pow(de, 1.4) : de;
       inside = [&](double x, const Node& at) {
         if (smooth)
           return std::polar(1.0, hermite(x)) * at.w_hat;
@@ -564,11 +572,20 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     const double quad_err = std::max(std::sqrt(std::norm(gauss_f - step / 6.0 * (qf0 + 4.0 * qf[1] + qfE))),
                                      std::abs(gauss_m - step / 6.0 * (qm0 + 4.0 * qm[1] + qmE)));
     const double travel = nE.tau - n0.tau;
-    // the direction must stay resolved even where the bound is too small for its forces to count: the events read it
-    const double over = std::max({ err * f_max / density, err / kMaxTurnError, quad_err / (density * travel), 1e-300 });
+    // A direction error made here errs the forces over this step and, decaying at the rate the law pulls the bristle back
+    // (d(delta theta)/ds = -(g / f) Re(w e*) delta theta), over the travel after it: the step gets its share of the
+    // tolerance for both. The direction must also stay resolved where the bound is too small for its forces to count:
+    // the events read it.
+    const double pull = n[1].W_abs > 0.0 ? n[1].W_abs * dot(n[1].w_hat, e_at[1]) : 0.0;
+    const double after = std::min(std::max(L - nE.tau, 0.0), pull > 0.0 ? n[1].g / pull : INFINITY);
+    const double share = travel / (travel + after);
+    const double over =
+        std::max({ err * f_max / (density * share), err / kMaxTurnError, quad_err / (density * travel), 1e-300 });
     if (over > 1.0 && step > 1e-9 * (1.0 + std::abs(s)))
     {
       h = step * std::max(0.2, 0.9 * std::pow(1.0 / over, smooth && !quasi ? 1.0 / 7.0 : 0.2));
+      if (quasi)
+        quasi_refused = 0;
       continue;
     }
     // re-adhesion: the first sample where the bristle is no longer pushed outward faster than the bound grows
@@ -646,10 +663,17 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
         integral += kW[j] * step * n[j].g * n[j].f;
       end.direction = e6;
     }
+    if (quasi && out)
+    {
+      // the start's deviation, decaying at lambda: f g (e^{i eta} - 1) e* to first order, integrated in closed form
+      const cd transient = cd(0.0, eta0 / lambda * (1.0 - std::exp(-lambda * step * stop))) * n0.g * n0.f *
+                           std::polar(1.0, manifold[0]) * n0.w_hat;
+      out->force += transient;
+      out->moment += cross(n0.z, transient);
+    }
     // The direction's error: this step's, and what earlier steps left, carried at the rate the law pulls the
     // direction back (d(delta theta)/ds = -(g/f) Re(w e*) delta theta); it errs each force by at most that times f.
     // And the quadrature's.
-    const double pull = n[1].W_abs > 0.0 ? n[1].W_abs * dot(n[1].w_hat, e_at[1]) : 0.0;
     drift = drift * std::exp(std::clamp(-pull * step * stop, -50.0, 2.0)) + err;
     error += 2.0 * drift * integral + stop * quad_err;
     e = e6;
@@ -658,6 +682,16 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     if (stop < 1.0)
       break;
     h = step * std::clamp(0.9 * std::pow(1.0 / over, smooth && !quasi ? 1.0 / 7.0 : 0.2), 0.2, 4.0);
+    // A Magnus step in the drive's frame that ends relaxed onto the drive where the law pulls hard: the next step may be
+    // long enough for the slow manifold (the Magnus steps would stay below pi / W).
+    if (quasi)
+      quasi_refused = 0;
+    if (!quasi && in_drive && nE.W_abs * h < kStiffStep && ++quasi_refused > 4)
+    {
+      const double r = nE.Kd / nE.W_abs;
+      if (std::abs(r) < 0.5 && std::abs(std::arg(e6 * std::conj(nE.w_hat)) - std::asin(r)) <= kRelaxed)
+        h = std::max(h, 1.25 * kStiffStep / nE.W_abs);
+    }
   }
   return finish(0.0);
 }
