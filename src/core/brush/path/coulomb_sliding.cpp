@@ -265,7 +265,8 @@ public:
         }
       }
     }
-    n.f = law_.shape(t);
+    // (a node is on the path, inside the patch or at its ends: a constant bound is its value there, not the 0 beyond)
+    n.f = m_ == 0 ? 1.0 : law_.shape(t);
     n.slope = law_.shapeSlope(t) * 2.0 * n.z.real();  // dt/dtau = -d(r^2)/dtau = 2 x on any path
     n.w = f_.drive(n.z);
     const cd W = ratio_value * n.w;
@@ -569,8 +570,16 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     correction(nE, e6, qfE, qmE);
     const cd gauss_f = step * (kW[0] * qf[0] + kW[1] * qf[1] + kW[2] * qf[2]);
     const double gauss_m = step * (kW[0] * qm[0] + kW[1] * qm[1] + kW[2] * qm[2]);
-    const double quad_err = std::max(std::sqrt(std::norm(gauss_f - step / 6.0 * (qf0 + 4.0 * qf[1] + qfE))),
-                                     std::abs(gauss_m - step / 6.0 * (qm0 + 4.0 * qm[1] + qmE)));
+    // Simpson's rule is two orders below the Gauss rule: its difference, scaled as QUADPACK scales its Kronrod
+    // difference (by a power of its size relative to the step's scale), estimates the Gauss rule's error.
+    const double simpson_diff = std::max(std::sqrt(std::norm(gauss_f - step / 6.0 * (qf0 + 4.0 * qf[1] + qfE))),
+                                         std::abs(gauss_m - step / 6.0 * (qm0 + 4.0 * qm[1] + qmE)));
+    double scale = 0.0;
+    for (int j = 0; j < 3; ++j)
+      scale = std::max({ scale, std::sqrt(std::norm(qf[j])), std::abs(qm[j]) });
+    scale = std::max({ scale, std::sqrt(std::norm(qf0)), std::sqrt(std::norm(qfE)) }) * step;
+    const double quad_err =
+        scale > 0.0 ? simpson_diff * std::min(1.0, 10.0 * std::pow(simpson_diff / scale, 0.4)) : simpson_diff;
     const double travel = nE.tau - n0.tau;
     // A direction error made here errs the forces over this step and, decaying at the rate the law pulls the bristle back
     // (d(delta theta)/ds = -(g / f) Re(w e*) delta theta), over the travel after it: the step gets its share of the
@@ -578,9 +587,10 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     // the events read it.
     const double pull = n[1].W_abs > 0.0 ? n[1].W_abs * dot(n[1].w_hat, e_at[1]) : 0.0;
     const double after = std::min(std::max(L - nE.tau, 0.0), pull > 0.0 ? n[1].g / pull : INFINITY);
-    const double share = travel / (travel + after);
-    const double over =
-        std::max({ err * f_max / (density * share), err / kMaxTurnError, quad_err / (density * travel), 1e-300 });
+    const double share = travel > 0.0 ? std::max(0.1, travel / (travel + after)) : 1.0;  // at most 10x stricter
+    double over = std::max({ err * f_max / (density * share), err / kMaxTurnError, 1e-300 });
+    if (quad_err > 0.0)
+      over = std::max(over, quad_err / (density * travel));
     if (over > 1.0 && step > 1e-9 * (1.0 + std::abs(s)))
     {
       h = step * std::max(0.2, 0.9 * std::pow(1.0 / over, smooth && !quasi ? 1.0 / 7.0 : 0.2));
