@@ -160,6 +160,8 @@ void BrushTransient::allocate()
   inside_.resize(u_.size());
   sliding_.resize(u_.size());
   slip_travel_.resize(u_.size());
+  step_error_.resize(u_.size());
+  step_error_scratch_.resize(u_.size());
   jump_.resize(u_.size());
   u_scratch_.resize(u_.size());
   jump_scratch_.resize(u_.size());
@@ -176,6 +178,7 @@ void BrushTransient::reset()
   std::fill(u_.begin(), u_.end(), Eigen::Vector2d::Zero());
   std::fill(sliding_.begin(), sliding_.end(), 0);
   std::fill(slip_travel_.begin(), slip_travel_.end(), INFINITY);
+  std::fill(step_error_.begin(), step_error_.end(), 0.0);
   std::fill(jump_.begin(), jump_.end(), Eigen::Vector2d::Zero());
   V_r_.setZero();
   omega_gamma_ = 0.0;
@@ -252,6 +255,7 @@ void BrushTransient::substep(const ContactKinematics& kin, double dt)
   const double spin = p_.tilt ? -kin.psi_dot : 0.0;
   const double a2 = p_.a * p_.a;
   const FrictionCap cap(p_);
+  const bool coulomb = p_.sliding_law == SlidingLaw::Coulomb;
   for (int j = 0; j < w_; ++j)
   {
     for (int i = 0; i < w_; ++i)
@@ -263,6 +267,7 @@ void BrushTransient::substep(const ContactKinematics& kin, double dt)
       if (g1 >= 0.0)
       {
         u_[p].setZero();  // outside the patch: undeformed (it re-enters under eq. 8)
+        step_error_[p] = 0.0;
         inside_[p] = sliding_[p] = 0;
         continue;
       }
@@ -274,11 +279,17 @@ void BrushTransient::substep(const ContactKinematics& kin, double dt)
         const double g0 = x0.squaredNorm() - a2;
         share = g0 > 0.0 ? -g1 / (g0 - g1) : 1.0;
         u_[p].setZero();
+        step_error_[p] = 0.0;
       }
       double t = share * dt;
       Eigen::Vector2d x_start = x1 + share * (x0 - x1);
       Eigen::Vector2d& u = u_[p];
       const double travel = (x1 - x_start).norm();
+      if (coulomb)
+      {
+        coulombStep(kin, cap, spin, p, x_start, x1, t, was_sliding);
+        continue;
+      }
       if (was_sliding)
       {
         // A sliding bristle re-adheres only where it enters G (reAdhesionEntry). Testing the adhering step against
@@ -323,11 +334,68 @@ void BrushTransient::substep(const ContactKinematics& kin, double dt)
   recentre();
 }
 
+void BrushTransient::coulombStep(const ContactKinematics& kin, const FrictionCap& cap, double spin, std::size_t p,
+                                 const Eigen::Vector2d& x_start, const Eigen::Vector2d& x1, double t, bool was_sliding)
+{
+  // The bristle as if it adhered over the step (eq. 1 with v_s = 0: the drive at the midpoint, the turn coupling's
+  // rotation exact), then scaled back onto the bound where it would pass it: the implicit (backward Euler) step of eq.
+  // (4b), the "return mapping". A sliding bristle thereby turns towards the drive by the angle its tip moves and
+  // re-adheres wherever the trial falls inside the bound; u stays continuous, so no onset jumps (jump_ stays 0).
+  const auto trial = [&](const Eigen::Vector2d& u, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double dt) {
+    const Eigen::Vector2d mid = 0.5 * (a + b);
+    if (spin != 0.0)
+      return Eigen::Vector2d(rotation(spin * dt) * u + rotationIntegral(spin, dt) * drive(kin, mid));
+    return Eigen::Vector2d(u + dt * drive(kin, mid));
+  };
+  const auto bound = [&](const Eigen::Vector2d& x) { return p_.mu * cap.qz(x.squaredNorm()) / p_.k; };
+  Eigen::Vector2d& u = u_[p];
+  const Eigen::Vector2d u0 = u;
+  const double over_start = u0.norm() - bound(x_start);  // <= 0 if it adhered
+  const Eigen::Vector2d adhering = trial(u0, x_start, x1, t);
+  u = adhering;
+  const FrictionCap::Result r = cap.apply(u, x1, adhering);
+  const double travel = (x1 - x_start).norm();
+  if (!r.sliding)
+    slip_travel_[p] = INFINITY;
+  else if (was_sliding && over_start >= -1e-15 * bound(x_start))
+    slip_travel_[p] += travel;
+  else
+  {
+    // onset in this substep: where |u| - bound crossed zero, linearly between its start and end values
+    const double over_end = adhering.norm() - p_.mu * r.q_z / p_.k;
+    const double before = over_start < 0.0 && over_end > over_start ? -over_start / (over_end - over_start) : 0.0;
+    slip_travel_[p] = (1.0 - before) * travel;
+  }
+  jump_[p].setZero();
+  // Where it slides, the same over two half steps: the first-order method's error is twice their difference, and their
+  // Richardson combination 2 u_half - u_one, put back on the bound, is second order. The first-order difference bounds
+  // what the combination leaves; a direction error made sliding shrinks by the projection's ratio f / |trial| at each
+  // later sliding step, and adhesion carries it unchanged.
+  if (r.sliding)
+  {
+    const Eigen::Vector2d x_half = 0.5 * (x_start + x1);
+    Eigen::Vector2d half = trial(u0, x_start, x_half, 0.5 * t);
+    cap.apply(half, x_half, half);
+    half = trial(half, x_half, x1, 0.5 * t);
+    cap.apply(half, x1, half);
+    const double n = adhering.norm(), b = p_.mu * r.q_z / p_.k;
+    step_error_[p] = step_error_[p] * (n > 0.0 ? std::min(1.0, b / n) : 1.0) + 2.0 * (u - half).norm();
+    const Eigen::Vector2d combined = 2.0 * half - u;
+    const double c = combined.norm();
+    if (c > 0.0)
+      u = b / c * combined;
+  }
+  inside_[p] = 1;
+  sliding_[p] = r.sliding;
+}
+
 double BrushTransient::streakBound(const ContactKinematics& kin) const
 {
   // A stretch of G (where sliding bristles re-adhere) narrower than a few lattice rows anchors a streak the
   // rows may all miss. Its force is bounded by |u - f w/|w|| <= 2 f over its width times the longest path
   // (pi in units of a), the field's units: 2 pi width (q_z(0) / (F_z / pi a^2)) / pi of mu F_z.
+  if (p_.sliding_law == SlidingLaw::Coulomb)
+    return 0.0;  // eq. (4b)'s field is continuous across the paths: no streaks of re-adhered bristles
   const Slips s = computeSlips(kin, p_.standstill_speed);
   BristleField field;
   if (!s.defined || (p_.tilt && std::abs(s.phi_gamma) * p_.a > 1.0))
@@ -459,12 +527,14 @@ void BrushTransient::recentre()
       inside_scratch_[p] = kept ? inside_[index(si, sj)] : 0;
       sliding_scratch_[p] = kept ? sliding_[index(si, sj)] : 0;
       slip_travel_scratch_[p] = kept ? slip_travel_[index(si, sj)] : INFINITY;
+      step_error_scratch_[p] = kept ? step_error_[index(si, sj)] : 0.0;
     }
   u_.swap(u_scratch_);
   jump_.swap(jump_scratch_);
   inside_.swap(inside_scratch_);
   sliding_.swap(sliding_scratch_);
   slip_travel_.swap(slip_travel_scratch_);
+  step_error_.swap(step_error_scratch_);
   o_ += R_ * Eigen::Vector2d(di * h_, dj * h_);
 }
 
@@ -478,6 +548,7 @@ BrushForces BrushTransient::forces() const
   BrushForces f;
   Eigen::Vector2d F[5];
   double M_z[5] = {}, load[5] = {};
+  double step_error = 0.0;  // eq. (4b): the sum of the bristles' time-step errors, each over its cell
   int count[5] = {};
   for (auto& v : F)
     v.setZero();
@@ -539,6 +610,8 @@ BrushForces BrushTransient::forces() const
         F[k] += cell;
         M_z[k] += x.x() * cell.y() - x.y() * cell.x();
         load[k] += weight * q_z;
+        if (k == 0)
+          step_error += weight * step_error_[p];
         ++count[k];
       }
     }
@@ -582,6 +655,8 @@ BrushForces BrushTransient::forces() const
   f.max_utilisation = utilisation;
   const double scale = p_.mu * p_.F_z;
   f.error_estimate = streak_estimate_;
+  if (scale > 0.0)
+    f.error_estimate += p_.k * step_error * weight(0) / scale;
   if (rows_active_)
     f.error_estimate += rows_weight_ * (rows_.integral_error + rows_.rows_error) * peakFactor(p_.pressure) /
                         boost::math::double_constants::pi;

@@ -14,6 +14,8 @@
 
 namespace sphere_contact_estimator
 {
+class FrictionCap;
+
 /// The brush PDE in the time domain (Romano et al. eq. 1 with v_s = 0 where the bristle adheres):
 ///   du/dt + (v_t . grad) u = -V_s - A_omega_z x [- A_psi_dot u],   v_t = -V_r [- A_omega_gamma x]
 /// (the bracketed terms with tilt on: the velocity field of eq. 31, where A_omega_gamma = -chi_gamma A_omega_z
@@ -119,6 +121,9 @@ private:
   }
   void allocate();  // sizes the lattice for p_ and resets
   void substep(const ContactKinematics& kin, double dt);
+  // one bristle's substep under eq. (4b): the trial deflection scaled back onto the bound, and its own error
+  void coulombStep(const ContactKinematics& kin, const FrictionCap& cap, double spin, std::size_t p,
+                   const Eigen::Vector2d& x_start, const Eigen::Vector2d& x1, double t, bool was_sliding);
   void recentre();
   double streakBound(const ContactKinematics& kin) const;
   void correctRows(const ContactKinematics& kin, bool held, double travel);
@@ -137,10 +142,11 @@ private:
   std::vector<std::uint8_t> sliding_;  // capped in the last substep
   std::vector<double> slip_travel_;    // travel since the onset of sliding (infinite while adhering)
   std::vector<Eigen::Vector2d> jump_;  // deflection before minus after that onset
+  std::vector<double> step_error_;     // eq. (4b): bound on the deflection's error from the time steps [m]
   // scratch for recentre(), sized once: the hot path does not allocate
   std::vector<Eigen::Vector2d> u_scratch_, jump_scratch_;
   std::vector<std::uint8_t> inside_scratch_, sliding_scratch_;
-  std::vector<double> slip_travel_scratch_;
+  std::vector<double> slip_travel_scratch_, step_error_scratch_;
   // the rigid motion of the last substep, for the direction each bristle moves in
   Eigen::Vector2d V_r_ = Eigen::Vector2d::Zero();
   double omega_gamma_ = 0.0;
