@@ -1,5 +1,6 @@
-// The transient model: against the closed-form transients (eqs. 28, 55), its steady state against the
-// steady model, pure spin (Sect. 5), convergence, its error estimate over noisy histories, and how it is stepped.
+// The transient model under both sliding laws: against the closed-form transients (eqs. 28, 55), its steady state
+// against the steady model, pure spin (Sect. 5), convergence, its error estimate over noisy histories, passivity, and
+// how it is stepped.
 
 // STL
 #include <cmath>
@@ -21,6 +22,7 @@ namespace
 {
 using test::figure4Parameters;
 using test::forceDistance;
+using test::kSlidingLaws;
 namespace cf = brush_closed_form;
 
 // Largest |u - oracle| over the bristles, relative to the largest |oracle|. Bristles where the oracle
@@ -71,20 +73,22 @@ TEST(BrushTransient, ReachesTheSteadyModel)
 {
   // Constant inputs with friction: after the bristles have crossed the patch the transient state is the
   // steady one. Both are discretisations; they meet as the resolution grows.
+  for (auto law : kSlidingLaws)
   for (bool tilt : { false, true })
     for (const auto& [sx, sy, phi] : { std::tuple{ 0.05, 0.02, 3.33 }, { -0.2, 0.1, 3.33 }, { 0.0, 0.0, 10.0 } })
     {
       std::vector<double> d;
       for (int n : { 16, 64 })
       {
-        const BrushParameters p = figure4Parameters(tilt, n);
+        const BrushParameters p = figure4Parameters(tilt, n, law);
         BrushTransient transient(p);
         const BrushForces t = transient.update(ContactKinematics::fromSlips({ sx, sy }, phi, 0.9, 1.0), 4.0 * p.a);
-        const BrushForces s = BrushSteady(figure4Parameters(tilt)).evaluate({ sx, sy }, phi, 0.9 * phi, 0.1 * phi, 1e-9);
+        const BrushForces s = BrushSteady(figure4Parameters(tilt, 32, law))
+                                  .evaluate({ sx, sy }, phi, 0.9 * phi, 0.1 * phi, 1e-7, nullptr, BrushSteady::kReferenceWork);
         d.push_back(forceDistance(t, s, p));
       }
-      EXPECT_LT(d[1], std::max(0.5 * d[0], 1e-3)) << "tilt " << tilt << " sigma_x " << sx;
-      EXPECT_LT(d[1], 0.01) << "tilt " << tilt << " sigma_x " << sx;  // 1 % of mu F_z at resolution 64
+      EXPECT_LT(d[1], std::max(0.5 * d[0], 1e-3)) << toString(law) << " tilt " << tilt << " sigma_x " << sx;
+      EXPECT_LT(d[1], 0.01) << toString(law) << " tilt " << tilt << " sigma_x " << sx;  // 1 % of mu F_z at 64
     }
 }
 
@@ -93,6 +97,7 @@ TEST(BrushTransient, ReachesTheSteadyModel)
 BrushParameters exampleParameters(bool tilt, int resolution)
 {
   BrushParameters p;
+  p.sliding_law = SlidingLaw::Rigid;
   p.a = 0.030132135540406;
   p.F_z = 721.6240066650845;
   p.mu = 0.8447950430510605;
@@ -127,7 +132,7 @@ HeldRun runHeld(const BrushParameters& p, const Eigen::Vector2d& sigma, double p
   return run;
 }
 
-TEST(BrushTransient, ConvergesMonotonicallyAtTheExamplePointOfIssue11)
+TEST(BrushTransient, RigidLawConvergesMonotonicallyAtTheExamplePointOfIssue11)
 {
   // Before the rows' correction and the re-adhesion on entering G, the error read 3.5, 1.6, 3.1, 1.3 and 0.19 % of
   // mu F_z at resolutions 8-128 without tilt: the rows hit or missed the streak, and bristles that should re-adhere
@@ -158,23 +163,54 @@ TEST(BrushTransient, ConvergesMonotonicallyAtTheExamplePointOfIssue11)
   }
 }
 
+TEST(BrushTransient, CoulombLawConvergesMonotonicallyAtTheExamplePoint)
+{
+  // The issue's example point under eq. (4b) (Fig. 4's parameters, sigma = 0, phi = 3.33 1/m): the trial deflection
+  // scaled back onto the bound, combined over one and two half steps, at held inputs converges to the steady solver
+  // at every doubling of the resolution, about at second order, and its estimate covers the error.
+  for (bool tilt : { false, true })
+  {
+    const BrushForces ref = BrushSteady(figure4Parameters(tilt))
+                                .evaluate({ 0.0, 0.0 }, 3.33, 0.9 * 3.33, 0.1 * 3.33, 1e-7, nullptr,
+                                          BrushSteady::kReferenceWork);
+    std::vector<double> e;
+    for (int n : { 8, 16, 32, 64, 128 })
+    {
+      const HeldRun run = runHeld(figure4Parameters(tilt, n), { 0.0, 0.0 }, 3.33, 0.9, ref);
+      EXPECT_TRUE(run.covered) << "tilt " << tilt << " resolution " << n;
+      e.push_back(run.error);
+    }
+    for (std::size_t i = 1; i < e.size(); ++i)
+      EXPECT_LT(e[i], e[i - 1]) << "tilt " << tilt << " resolution " << (8 << i);
+    const double order = std::log2(e[0] / e[4]) / 4.0;
+    std::printf("Coulomb example point, tilt %d: %.2e %.2e %.2e %.2e %.2e of mu F_z, order %.2f from 8 to 128\n", tilt,
+                e[0], e[1], e[2], e[3], e[4], order);
+    EXPECT_GT(order, 1.5) << "tilt " << tilt;
+  }
+}
+
 TEST(BrushTransient, ConvergesMonotonicallyOnTheFigure4Set)
 {
-  // A spread of the Fig. 4 set, with and without tilt: the error at held inputs falls at every doubling of the
-  // resolution (the whole set, 168 points: model_accuracy, docs/benchmarks.md), and the estimate covers it.
+  // A spread of the Fig. 4 set, with and without tilt, under both laws: the error at held inputs falls at every
+  // doubling of the resolution (the whole set, 168 points: model_accuracy, docs/benchmarks.md), and the estimate
+  // covers it.
+  for (auto law : kSlidingLaws)
   for (bool tilt : { false, true })
     for (double sy : { 0.0, 0.1 })
       for (double sx : { -1.0, -0.3, 0.0, 0.1, 0.4 })
       {
-        const BrushForces ref = BrushSteady(figure4Parameters(tilt))
-                                    .evaluate({ sx, sy }, 3.33, 0.9 * 3.33, 0.1 * 3.33, 1e-10, nullptr,
+        const BrushForces ref = BrushSteady(figure4Parameters(tilt, 32, law))
+                                    .evaluate({ sx, sy }, 3.33, 0.9 * 3.33, 0.1 * 3.33,
+                                              law == SlidingLaw::Rigid ? 1e-10 : 1e-7, nullptr,
                                               BrushSteady::kReferenceWork);
         double last = INFINITY;
         for (int n : { 8, 16, 32, 64 })
         {
-          const HeldRun run = runHeld(figure4Parameters(tilt, n), { sx, sy }, 3.33, 0.9, ref);
-          EXPECT_LT(run.error, last) << "tilt " << tilt << " sigma (" << sx << ", " << sy << ") resolution " << n;
-          EXPECT_TRUE(run.covered) << "tilt " << tilt << " sigma (" << sx << ", " << sy << ") resolution " << n;
+          const HeldRun run = runHeld(figure4Parameters(tilt, n, law), { sx, sy }, 3.33, 0.9, ref);
+          SCOPED_TRACE(::testing::Message() << toString(law) << " tilt " << tilt << " sigma (" << sx << ", " << sy
+                                            << ") resolution " << n);
+          EXPECT_LT(run.error, last);
+          EXPECT_TRUE(run.covered);
           last = run.error;
         }
       }
@@ -226,18 +262,22 @@ TEST(BrushTransient, ConvergesWithResolution)
 {
   // Observed order of the steady state with partial sliding against a fine run.
   const Eigen::Vector2d sigma(0.05, 0.02);
-  const auto run = [&](int n) {
-    BrushTransient m(figure4Parameters(false, n));
-    return m.update(ContactKinematics::fromSlips(sigma, 3.33, 1.0, 1.0), 0.2);
-  };
-  const BrushParameters p = figure4Parameters();
-  const BrushForces ref = BrushSteady(figure4Parameters()).evaluate(sigma, 3.33, 0.0, 0.0, 1e-9);
-  const double e16 = forceDistance(run(16), ref, p), e32 = forceDistance(run(32), ref, p),
-               e64 = forceDistance(run(64), ref, p);
-  const double q = std::log2(e16 / e64) / 2.0;
-  std::printf("transient, partial sliding: errors %.2e %.2e %.2e of mu F_z, observed order %.2f\n", e16, e32, e64, q);
-  EXPECT_GT(q, 0.8);
-  EXPECT_LT(e64, 0.01);
+  for (auto law : kSlidingLaws)
+  {
+    const auto run = [&](int n) {
+      BrushTransient m(figure4Parameters(false, n, law));
+      return m.update(ContactKinematics::fromSlips(sigma, 3.33, 1.0, 1.0), 0.2);
+    };
+    const BrushParameters p = figure4Parameters(false, 32, law);
+    const BrushForces ref = BrushSteady(p).evaluate(sigma, 3.33, 0.0, 0.0, 1e-8, nullptr, BrushSteady::kReferenceWork);
+    const double e16 = forceDistance(run(16), ref, p), e32 = forceDistance(run(32), ref, p),
+                 e64 = forceDistance(run(64), ref, p);
+    const double q = std::log2(e16 / e64) / 2.0;
+    std::printf("transient, %s law, partial sliding: errors %.2e %.2e %.2e of mu F_z, observed order %.2f\n",
+                toString(law), e16, e32, e64, q);
+    EXPECT_GT(q, 0.8) << toString(law);
+    EXPECT_LT(e64, 0.01) << toString(law);
+  }
 }
 
 TEST(BrushTransient, PureSpinSect5)
@@ -277,17 +317,21 @@ TEST(BrushTransient, PureSpinSect5)
     EXPECT_NEAR(f.M_z, i * first, 1e-9 * i * std::abs(first));  // grows in proportion to psi, without bound
   }
   // With limited friction both stay bounded: the moment settles and never exceeds the full-sliding one.
+  for (auto law : kSlidingLaws)
   for (bool tilt : { false, true })
   {
-    BrushTransient limited(figure4Parameters(tilt, 32));
+    BrushTransient limited(figure4Parameters(tilt, 32, law));
     std::vector<double> M;
     for (int i = 0; i < 40; ++i)
       M.push_back(limited.update(k, 0.25).M_z);
     // |M_z| <= mu integral q_z r dA = mu F_z 8a/15 for the parabolic pressure (to the lattice quadrature)
     for (double m : M)
       EXPECT_LE(std::abs(m), 3000.0 * 8.0 * 0.05 / 15.0 * (1 + 1e-3)) << "tilt " << tilt;
-    for (std::size_t i = M.size() - 10; i < M.size(); ++i)  // settled: the last 2.5 s change by < 0.1 %
-      EXPECT_NEAR(M[i], M.back(), 1e-3 * std::abs(M.back())) << "tilt " << tilt;
+    // settled: the last 2.5 s change by < 0.1 % (under eq. (4b) with the turn coupling, where the sliding bristles'
+    // direction turns with the frame against a lattice at rest, the lattice leaves a periodic +-0.13 % at resolution 32)
+    const double settled = law == SlidingLaw::Coulomb && tilt ? 3e-3 : 1e-3;
+    for (std::size_t i = M.size() - 10; i < M.size(); ++i)
+      EXPECT_NEAR(M[i], M.back(), settled * std::abs(M.back())) << toString(law) << " tilt " << tilt;
     EXPECT_GT(limited.forces().sliding_fraction, 0.5);
   }
 }
@@ -296,9 +340,10 @@ TEST(BrushTransient, StepSizeDoesNotMatter)
 {
   // Many small updates or one large one: the same state (substeps adapt to the motion).
   const ContactKinematics k = ContactKinematics::fromSlips({ 0.05, 0.02 }, 3.33, 0.9, 1.5);
+  for (auto law : kSlidingLaws)
   for (bool tilt : { false, true })
   {
-    const BrushParameters p = figure4Parameters(tilt, 32);
+    const BrushParameters p = figure4Parameters(tilt, 32, law);
     BrushTransient one(p), many(p);
     const BrushForces a = one.update(k, 0.06);
     BrushForces b;
@@ -310,7 +355,10 @@ TEST(BrushTransient, StepSizeDoesNotMatter)
 
 TEST(BrushTransient, ContinuousThroughStandstillAndResettable)
 {
-  const BrushParameters p = figure4Parameters(true, 32);
+  for (auto law : kSlidingLaws)
+  {
+  SCOPED_TRACE(toString(law));
+  const BrushParameters p = figure4Parameters(true, 32, law);
   BrushTransient model(p);
   // decelerate to rest and start again: forces change smoothly, nothing is divided by V_r
   BrushForces last = model.update(ContactKinematics::fromSlips({ 0.05, 0.0 }, 1.0, 0.9, 1.0), 0.2);
@@ -330,17 +378,19 @@ TEST(BrushTransient, ContinuousThroughStandstillAndResettable)
   const BrushForces zero = model.forces();
   EXPECT_EQ(zero.F_x, 0.0);
   EXPECT_EQ(zero.M_z, 0.0);
+  }
 }
 
 TEST(BrushTransient, MirrorSymmetryAndFrictionLimitAlongARandomRun)
 {
   // Random kinematics changing every 5 ms, through standstill and reversal: |F_t| <= mu F_z at every
   // step, and the mirrored run (y -> -y: V_y, V_s,y, omega_z, psi_dot change sign) mirrors the forces.
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (auto law : kSlidingLaws)
   for (bool tilt : { false, true })
   {
-    const BrushParameters p = figure4Parameters(tilt, 24);
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const BrushParameters p = figure4Parameters(tilt, 24, law);
     BrushTransient model(p), mirror(p);
     for (int i = 0; i < 200; ++i)
     {
@@ -369,7 +419,9 @@ TEST(BrushTransient, TiltingRadiusInsideThePatch)
 {
   // |R_gamma| < a: bristles on circles inside the patch never leave it (Fig. 2). No steady state, but the
   // transient model stays defined, bounded by friction and the friction limit.
-  const BrushParameters p = figure4Parameters(true, 32);
+  for (auto law : kSlidingLaws)
+  {
+  const BrushParameters p = figure4Parameters(true, 32, law);
   BrushTransient model(p);
   const ContactKinematics k = ContactKinematics::fromSlips({ 0.02, 0.0 }, 40.0, 1.0, 1.0);  // R_gamma = a / 2
   for (int i = 0; i < 50; ++i)
@@ -377,6 +429,7 @@ TEST(BrushTransient, TiltingRadiusInsideThePatch)
     const BrushForces f = model.update(k, 0.01);
     EXPECT_TRUE(std::isfinite(f.F_x) && std::isfinite(f.F_y) && std::isfinite(f.M_z));
     EXPECT_LE(std::hypot(f.F_x, f.F_y), p.mu * p.F_z * (1 + 1e-12));
+  }
   }
 }
 
@@ -388,6 +441,9 @@ TEST(BrushTransient, ErrorEstimateCoversNoisyHistoriesAtRandomPoints)
   // spins (1e-3 to 1e-1), 0.03-2.5 patch radii rolled per message, some ending at standstill with spin and
   // slip noise. The estimate at resolution 16 against the model at 64 (whose own estimate is added): at least
   // 99 % covered, never by less than half.
+  // (Under eq. (4b): never short.)
+  for (auto law : kSlidingLaws)
+  {
   std::mt19937_64 rng(23);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::normal_distribution<double> g(0.0, 1.0);
@@ -395,7 +451,7 @@ TEST(BrushTransient, ErrorEstimateCoversNoisyHistoriesAtRandomPoints)
   double worst = 0.0;
   for (int h = 0; h < 60; ++h)
   {
-    BrushParameters p = test::drawEnvelopeParameters(rng, h);
+    BrushParameters p = test::drawEnvelopeParameters(rng, h, law);
     p.standstill_speed = 0.05;
     const double scale = std::pow(10.0, -3.0 * u(rng));
     const Eigen::Vector2d base = scale * Eigen::Vector2d(0.3 * (2.0 * u(rng) - 1.0), 0.1 * (2.0 * u(rng) - 1.0));
@@ -435,9 +491,67 @@ TEST(BrushTransient, ErrorEstimateCoversNoisyHistoriesAtRandomPoints)
       worst = std::max(worst, ratio);
     }
   }
-  RecordProperty("worst_error_over_estimate", std::to_string(worst));
-  EXPECT_LE(short_count, checked / 100) << "worst error / estimate " << worst;
-  EXPECT_LE(worst, 2.0);
+  std::printf("%s law: error / estimate at most %.2f, short at %d of %d messages\n", toString(law), worst, short_count,
+              checked);
+  RecordProperty(std::string("worst_error_over_estimate_") + toString(law), std::to_string(worst));
+  EXPECT_LE(short_count, law == SlidingLaw::Rigid ? checked / 100 : 0) << "worst error / estimate " << worst;
+  EXPECT_LE(worst, law == SlidingLaw::Rigid ? 2.0 : 1.0);
+  }
+}
+
+// The elastic energy of the bristles, sum of k |u|^2 / 2 over the lattice cells [J].
+double elasticEnergy(const BrushTransient& model)
+{
+  const BrushParameters& p = model.parameters();
+  const double cell = model.spacing() * model.spacing();
+  double e = 0.0;
+  model.forEachBristle([&](const Eigen::Vector2d&, const Eigen::Vector2d& u, bool) { e += 0.5 * p.k * u.squaredNorm() * cell; });
+  return e;
+}
+
+TEST(BrushTransient, ThePatchNeverGivesEnergyBack)
+{
+  // Passivity: from any state, a step with limited friction stores no more elastic energy than the same step without
+  // sliding would (friction only takes energy out of the bristles). Random states (random kinematics through standstill
+  // and reversal, noise on every message), random steps, under both laws, each step from a copy of the state.
+  // Under eq. (4b) every bristle's deflection is the adhering trial scaled back, |u| <= |u_trial|: never more energy.
+  // The rigid law sets a sliding bristle along the drive of the moment at |u| = f whatever its trial did, but outside
+  // G the drive pushes it outward faster than the bound grows, so its trial is beyond the bound there too.
+  for (auto law : kSlidingLaws)
+  {
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    int steps = 0, gains = 0;
+    double worst_gain = 0.0;
+    for (bool tilt : { false, true })
+    {
+      const BrushParameters p = figure4Parameters(tilt, 24, law);
+      BrushTransient model(p);
+      for (int i = 0; i < 300; ++i)
+      {
+        ContactKinematics k;
+        k.V_r = Eigen::Vector2d(u(rng), i % 30 < 10 ? 0.0 : 0.3 * u(rng)) * (i % 30 < 5 ? 0.0 : 1.0);
+        k.V_s = Eigen::Vector2d(0.1 * u(rng), 0.1 * u(rng));
+        k.omega_z = 8.0 * u(rng);
+        k.psi_dot = (0.5 + 0.5 * u(rng)) * k.omega_z;
+        const double dt = 0.002 * (1.0 + u(rng));
+        BrushTransient adhering = model;
+        BrushParameters no_sliding = p;
+        no_sliding.mu = 1e6;  // a bound of metres: never reached
+        adhering.setParameters(no_sliding);
+        adhering.update(k, dt);
+        model.update(k, dt);
+        const double e_limited = elasticEnergy(model), e_adhering = elasticEnergy(adhering);
+        ++steps;
+        const double gain = (e_limited - e_adhering) / std::max(e_adhering, 1e-300);
+        gains += gain > 1e-12;
+        worst_gain = std::max(worst_gain, gain);
+        EXPECT_LE(e_limited, e_adhering * (1.0 + 1e-12)) << toString(law) << " tilt " << tilt << " step " << i;
+      }
+    }
+    std::printf("%s law: the limited step stored more energy than the adhering one at %d of %d steps (by up to %.1f %%)\n",
+                toString(law), gains, steps, 100.0 * worst_gain);
+  }
 }
 
 TEST(BrushTransient, BadStepsAreRejected)
