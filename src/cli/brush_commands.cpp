@@ -135,6 +135,10 @@ CLI::App* addBrushCommand(CLI::App& app, BrushOptions& o)
   sub->add_option("--resolution", p.resolution, "transient (and auto's transient): lattice spacings across the patch")
       ->capture_default_str();
   sub->add_option("--pressure", o.pressure, "parabolic | hertzian | uniform")->capture_default_str();
+  sub->add_option("--sliding-law", o.sliding_law,
+                  "coulomb: eq. (4b), a sliding bristle's stress opposes its tip's full sliding velocity | rigid: "
+                  "Sect. 6's approximation along the rigid sliding velocity (the paper's Fig. 4)")
+      ->capture_default_str();
   sub->add_option("--distance", o.distance,
                   "transient: distance travelled from undeformed at constant slips [m] (default 4a: steady state)");
   sub->add_option("--covariance", o.covariance,
@@ -159,6 +163,10 @@ void runBrushCommand(const BrushOptions& o, std::ostream& out)
     p.pressure = *pressure;
   else
     throw std::invalid_argument("unknown --pressure '" + o.pressure + "': use parabolic, hertzian or uniform");
+  if (const auto law = parseSlidingLaw(o.sliding_law))
+    p.sliding_law = *law;
+  else
+    throw std::invalid_argument("unknown --sliding-law '" + o.sliding_law + "': use coulomb or rigid");
   if (o.patch_radius)
     p.a = *o.patch_radius;
   else if (o.contact_modulus)
@@ -194,6 +202,7 @@ void runBrushCommand(const BrushOptions& o, std::ostream& out)
 
   nlohmann::ordered_json j;
   j["model"] = toString(ran);
+  j["sliding_law"] = ran == BrushModelKind::Linear ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(toString(p.sliding_law));
   if (ran == BrushModelKind::Auto)
   {
     j["model_used"] = toString(model->lastModel());

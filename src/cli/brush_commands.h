@@ -34,6 +34,7 @@ struct BrushOptions
   std::optional<double> patch_radius, contact_modulus, sphere_radius;
   std::optional<double> distance;
   std::string pressure = "parabolic";
+  std::string sliding_law = "coulomb";
   /// --covariance CXX CXY CXPHI CYY CYPHI CPHIPHI: the symmetric covariance of (sigma_x, sigma_y, phi), empty: none
   std::vector<double> covariance;
   BrushParameters parameters = accurate();

@@ -32,6 +32,7 @@ EstimatorSettings settingsFromConfig(const ContactEstimatorConfig& c)
   s.bristle_stiffness = c.bristle_stiffness;
   s.friction = c.friction;
   s.pressure = checked<PressureDistribution>("pressure", c.pressure, 3, "parabolic (0), hertzian (1), uniform (2)");
+  s.sliding_law = checked<SlidingLaw>("sliding_law", c.sliding_law, 2, "coulomb (0), rigid (1)");
   s.tilt = c.tilt;
   s.tilt_ratio_source = checked<TiltRatioSource>("tilt_ratio_source", c.tilt_ratio_source, 2, "estimate (0), fixed (1)");
   s.tilt_ratio = c.tilt_ratio;

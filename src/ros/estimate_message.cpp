@@ -18,6 +18,8 @@ static_assert(ContactEstimate::BRUSH_OFF == static_cast<int>(BrushModelKind::Off
               ContactEstimate::BRUSH_STEADY == static_cast<int>(BrushModelKind::Steady) &&
               ContactEstimate::BRUSH_TRANSIENT == static_cast<int>(BrushModelKind::Transient) &&
               ContactEstimate::BRUSH_AUTO == static_cast<int>(BrushModelKind::Auto));
+static_assert(ContactEstimate::SLIDING_LAW_COULOMB == static_cast<int>(SlidingLaw::Coulomb) &&
+              ContactEstimate::SLIDING_LAW_RIGID == static_cast<int>(SlidingLaw::Rigid));
 static_assert(RollingResistance::FLAG_UNDERDAMPED == cylinder_flags::kUnderdamped &&
               RollingResistance::FLAG_SELF_INCONSISTENT == cylinder_flags::kSelfInconsistent &&
               RollingResistance::FLAG_NO_STEADY_STATE == cylinder_flags::kNoSteadyState &&
@@ -68,6 +70,7 @@ void toMessage(const ContactEstimateData& e, ContactEstimate& m)
   m.brush_model = static_cast<uint8_t>(e.brush_model);
   m.brush_model_used = static_cast<uint8_t>(e.brush_model_used);
   m.brush_resolution = static_cast<uint16_t>(e.brush_resolution);
+  m.sliding_law = static_cast<uint8_t>(e.sliding_law);
   m.patch_radius = e.patch_radius;
   m.load = e.load;
   m.brush_force.x = e.brush.F_x;

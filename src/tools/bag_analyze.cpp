@@ -77,7 +77,7 @@ int main(int argc, char** argv)
   const std::map<std::string, int> brush_models = { { "off", 0 }, { "linear", 1 }, { "steady", 2 }, { "transient", 3 },
                                                     { "auto", 4 } };
   const std::map<std::string, int> rr_models = { { "off", 0 }, { "exact", 1 }, { "expansion", 2 }, { "table", 3 } };
-  std::string brush_model, rr_model, progress = "auto";
+  std::string brush_model, sliding_law, rr_model, progress = "auto";
   bool estimates_only = false, as_set = false;
   std::vector<std::string> inputs;
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -98,6 +98,9 @@ int main(int argc, char** argv)
   app.add_option("--set", sets, "NAME=VALUE: one parameter, after the file (repeatable)");
   app.add_option("--brush-model", brush_model, "brush model, overriding the file")
       ->check(CLI::IsMember({ "off", "linear", "steady", "transient", "auto" }));
+  app.add_option("--sliding-law", sliding_law, "sliding law of the brush models, overriding the file: coulomb (eq. 4b) "
+                                               "or rigid (Sect. 6's approximation, as the paper's Fig. 4)")
+      ->check(CLI::IsMember({ "coulomb", "rigid" }));
   app.add_option("--rolling-resistance-model", rr_model, "rolling-resistance model, overriding the file")
       ->check(CLI::IsMember({ "off", "exact", "expansion", "table" }));
   app.add_option("--odom-topic", options.odom_topic, "nav_msgs/Odometry topic (default: the bag's only one)");
@@ -134,6 +137,8 @@ int main(int argc, char** argv)
     }
     if (!brush_model.empty())
       options.config.brush_model = brush_models.at(brush_model);
+    if (!sliding_law.empty())
+      sce::setParameter(options.config, "sliding_law", sliding_law);
     if (!rr_model.empty())
       options.config.rolling_resistance_model = rr_models.at(rr_model);
 

@@ -228,6 +228,18 @@ TEST_F(BagAnalyze, CommandLine)
   const std::string csv = slurp(kDir + "/cli.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 302);  // header and one row per estimate
   EXPECT_NE(csv.find(",0.6,4,"), std::string::npos) << "friction 0.6 and brush model auto in the rows";
+  EXPECT_NE(csv.find(",sliding_law\n"), std::string::npos) << "the sliding law's column";
+  EXPECT_NE(csv.find(",0\n"), std::string::npos) << "eq. (4b), the default (SLIDING_LAW_COULOMB), in the rows";
+  EXPECT_EQ(csv.find(",1\n"), std::string::npos);
+  // the approximation of Sect. 6 on request, said in every row
+  r = runCommand(tool + " -i " + bag + " --csv " + kDir + "/cli_rigid.csv -p " + params + " --sliding-law rigid");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  const std::string rigid = slurp(kDir + "/cli_rigid.csv");
+  long rows_rigid = 0;
+  for (std::size_t at = rigid.find(",1\n"); at != std::string::npos; at = rigid.find(",1\n", at + 1))
+    ++rows_rigid;
+  EXPECT_EQ(rows_rigid, 301);
+  EXPECT_NE(runCommand(tool + " -i " + bag + " -p " + params + " --sliding-law viscous").status, 0);
 
   // errors for people: status 2 (CLI11's own for usage) and the reason on stderr
   r = runCommand(tool + " -i " + kDir + "/tf_out.bag --odom-topic /nope");

@@ -39,6 +39,7 @@ TEST(Parameters, CfgDefaultsAreTheCoreDefaults)
   SAME(bristle_stiffness);
   SAME(friction);
   SAME(pressure);
+  SAME(sliding_law);
   SAME(tilt);
   SAME(tilt_ratio_source);
   SAME(tilt_ratio);
@@ -87,6 +88,9 @@ TEST(Parameters, EnumsTakeTheirNames)
   EXPECT_EQ(c.rolling_resistance_model, 2);
   sce::setParameter(c, "pressure", "hertzian");
   EXPECT_EQ(c.pressure, 1);
+  sce::setParameter(c, "sliding_law", "rigid");
+  EXPECT_EQ(c.sliding_law, 1);
+  EXPECT_EQ(sce::settingsFromConfig(c).sliding_law, sce::SlidingLaw::Rigid);
   sce::setParameter(c, "tilt_ratio_source", "fixed");
   EXPECT_EQ(c.tilt_ratio_source, 1);
   EXPECT_EQ(sce::settingsFromConfig(c).brush_model, sce::BrushModelKind::Transient);

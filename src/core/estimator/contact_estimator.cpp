@@ -232,6 +232,7 @@ ContactKinematics ContactEstimator::contactKinematics(const EstimatorInput& in, 
 void ContactEstimator::runBrush(const ContactKinematics& kin, double dt, double omega_z, ContactEstimateData& o)
 {
   o.brush_model = settings_.brush_model;
+  o.sliding_law = settings_.sliding_law;
   o.brush_model_used = BrushModelKind::Off;
   o.brush_resolution = 0;
   o.brush_target = 0.0;

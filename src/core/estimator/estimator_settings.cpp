@@ -23,6 +23,7 @@ BrushParameters EstimatorSettings::brushParameters() const
   p.k = bristle_stiffness;
   p.mu = friction;
   p.pressure = pressure;
+  p.sliding_law = sliding_law;
   p.tilt = tilt;
   p.resolution = resolution;
   p.standstill_speed = standstill_speed;

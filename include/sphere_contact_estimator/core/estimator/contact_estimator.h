@@ -62,6 +62,7 @@ struct ContactEstimateData
 
   BrushModelKind brush_model = BrushModelKind::Off;       ///< as configured
   BrushModelKind brush_model_used = BrushModelKind::Off;  ///< the model that ran (differs under auto)
+  SlidingLaw sliding_law = SlidingLaw::Coulomb;           ///< as configured (the linear model has no sliding)
   int brush_resolution = 0;                         ///< the transient model's resolution (0: linear, steady, off)
   double brush_target = 0.0;  ///< the accuracy target the brush answer was computed to (BrushModel::lastTarget)
   BrushForces brush;          ///< F_x, F_y [N], M_z [N m] on the sphere, ROS contact frame

@@ -36,6 +36,7 @@ struct EstimatorSettings
   double bristle_stiffness = 2e8;  ///< k [N/m^3]
   double friction = 0.8;           ///< mu
   PressureDistribution pressure = PressureDistribution::Parabolic;
+  SlidingLaw sliding_law = SlidingLaw::Coulomb;  ///< eq. (4b); rigid: Sect. 6's approximation (README: Sliding law)
   bool tilt = false;               ///< Sect. 4 formulation (eq. 31, 32)
   TiltRatioSource tilt_ratio_source = TiltRatioSource::Estimate;
   double tilt_ratio = 1.0;         ///< chi_gamma for TiltRatioSource::Fixed
