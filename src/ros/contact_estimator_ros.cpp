@@ -128,6 +128,9 @@ void ContactEstimatorRos::odometryCallback(const nav_msgs::Odometry::ConstPtr& m
   last_rr_flags_ = e.rolling_resistance.flags;
   last_regime_ = static_cast<std::uint8_t>(e.rolling_resistance.regime);
   last_flags_ = out->estimate.flags;
+  last_motion_to_noise_ = e.motion_to_noise;
+  within_noise_ += (e.flags & estimate_flags::kMotionWithinNoise) != 0;
+  ++since_report_;
   have_estimate_ = true;
   last_covariance_status_ = e.covariance.status;
   last_spread_ = e.covariance.brush_method == CovarianceMethod::None ? 0.0 : e.covariance.brush_spread;
@@ -227,10 +230,20 @@ void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWra
   status.add("rolling-resistance flags", last_rr_flags_);
   status.add("estimate flags", last_flags_);
   status.add("standstill", static_cast<bool>(last_flags_ & estimate_flags::kStandstill));
+  status.add("motion within noise (parked)", static_cast<bool>(last_flags_ & estimate_flags::kMotionWithinNoise));
+  status.add("motion / noise, last [-]", last_motion_to_noise_);
+  status.add("estimates within noise since the last report", std::to_string(within_noise_) + " of " + std::to_string(since_report_));
+  // a parked robot is no problem, but its forces are the bristles' answer to the odometry's noise, not measured sliding
+  std::string parked;
+  if (within_noise_ > 0)
+    parked = "parked: the motion is within the odometry's declared noise in " + std::to_string(within_noise_) + " of " +
+             std::to_string(since_report_) + " estimates (their brush forces are the response to that noise)";
+  within_noise_ = 0;
+  since_report_ = 0;
   if (problems.empty())
-    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "models valid");
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, parked.empty() ? "models valid" : "models valid; " + parked);
   else
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, problems);
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, parked.empty() ? problems : problems + "; " + parked);
 }
 
 void ContactEstimatorRos::diagnoseUncertainty(diagnostic_updater::DiagnosticStatusWrapper& status)

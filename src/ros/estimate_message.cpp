@@ -1,5 +1,9 @@
 #include "sphere_contact_estimator/ros/estimate_message.h"
 
+// STL
+#include <cmath>
+#include <limits>
+
 namespace sphere_contact_estimator
 {
 // The message constants are the core's bits and enums, so the conversion copies them as they are.
@@ -7,7 +11,8 @@ static_assert(ContactEstimate::FLAG_TIME_JUMP_RESET == estimate_flags::kTimeJump
               ContactEstimate::FLAG_GAP_RESET == estimate_flags::kGapReset &&
               ContactEstimate::FLAG_DUPLICATE_STAMP == estimate_flags::kDuplicateStamp &&
               ContactEstimate::FLAG_STANDSTILL == estimate_flags::kStandstill &&
-              ContactEstimate::FLAG_HEADING_RESET == estimate_flags::kHeadingReset);
+              ContactEstimate::FLAG_HEADING_RESET == estimate_flags::kHeadingReset &&
+              ContactEstimate::FLAG_MOTION_WITHIN_NOISE == estimate_flags::kMotionWithinNoise);
 static_assert(ContactEstimate::BRUSH_FLAG_STANDSTILL == brush_flags::kStandstill &&
               ContactEstimate::BRUSH_FLAG_NO_STEADY_STATE_TILT == brush_flags::kNoSteadyStateTilt &&
               ContactEstimate::BRUSH_FLAG_LINEAR_SATURATED == brush_flags::kLinearSaturated &&
@@ -110,6 +115,7 @@ void toMessage(const ContactEstimateData& e, ContactEstimate& m)
       v.rolling_resistance_method == CovarianceMethod::None ? -1.0 : v.rolling_resistance_force_variance;
 
   m.valid = e.valid();
+  m.motion_to_noise = std::isfinite(e.motion_to_noise) ? e.motion_to_noise : std::numeric_limits<double>::max();  // no inf on a topic
   m.flags = e.flags;
   m.compute_time = e.compute_time;
 }

@@ -104,6 +104,8 @@ private:
   // the forces' propagated spread since the last report (a fraction of mu F_z), and the statuses seen
   double spread_max_ = 0.0, last_spread_ = 0.0;
   std::uint64_t over_spread_ = 0, reported_bad_covariance_ = 0;
+  std::uint64_t within_noise_ = 0, since_report_ = 0;  // estimates flagged kMotionWithinNoise, and all, since the last report
+  double last_motion_to_noise_ = -1.0;
   CovarianceStatus last_covariance_status_ = CovarianceStatus::Disabled;
 };
 

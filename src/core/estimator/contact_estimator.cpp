@@ -1,6 +1,7 @@
 #include "sphere_contact_estimator/core/estimator/contact_estimator.h"
 
 // Package
+#include "sphere_contact_estimator/core/estimator/motion_noise.h"
 #include "sphere_contact_estimator/core/estimator/paper_frame.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_spread.h"
 
@@ -134,6 +135,7 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   o.rolling_speed = speed;
   const ContactKinematics kin = contactKinematics(in, psi_dot, o);
   propagateBrushCovariance(in, speed, o);
+  judgeMotion(in, o);
   runBrush(kin, o.dt, in.omega.z(), o);
   runRollingResistance(speed, o);
   propagateRollingResistanceCovariance(speed, o);
@@ -269,6 +271,19 @@ void ContactEstimator::runRollingResistance(double speed, ContactEstimateData& o
     o.rolling_resistance_torque = o.rolling_resistance.torque * cylinder_->parameters().L;
   }
   o.rolling_resistance_power = o.rolling_resistance_force * speed;
+}
+
+void ContactEstimator::judgeMotion(const EstimatorInput& in, ContactEstimateData& o) const
+{
+  // a parked robot's odometry is its noise: said so, instead of letting its forces read as measured sliding
+  o.motion_to_noise = -1.0;
+  if (!settings_.propagate_covariance || in.twist_covariance_status != CovarianceStatus::Ok)
+    return;
+  UsedTwist x;
+  x << in.v_contact.x(), in.v_contact.y(), in.omega.x(), in.omega.y(), in.omega.z();
+  o.motion_to_noise = motionToNoise(x, usedTwistCovariance(in.twist_covariance));
+  if (o.motion_to_noise >= 0.0 && o.motion_to_noise <= kMotionWithinNoise)
+    o.flags |= estimate_flags::kMotionWithinNoise;
 }
 
 void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double speed, ContactEstimateData& o) const

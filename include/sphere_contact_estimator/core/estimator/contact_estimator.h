@@ -39,6 +39,9 @@ constexpr std::uint32_t kDuplicateStamp = 1u << 2;  ///< within 1 ns of the last
 constexpr std::uint32_t kStandstill = 1u << 3;      ///< V_r below standstill_speed: slips undefined
 constexpr std::uint32_t kHeadingReset = 1u << 4;    ///< rolling direction re-initialised (after standstill
                                                     ///< or a jump): the transient state was turned with it
+/// The motion is within the noise the twist covariance declares (motionToNoise <= kMotionWithinNoise): a parked
+/// robot. The brush forces are then the bristles' response to that noise, not a measured sliding.
+constexpr std::uint32_t kMotionWithinNoise = 1u << 6;  // (bit 5 is the ROS layer's: orientation from odometry)
 }  // namespace estimate_flags
 
 /// One estimate, everything in the ROS contact frame (REP 103: x along the rolling direction, y left,
@@ -79,6 +82,9 @@ struct ContactEstimateData
   double rolling_resistance_torque = 0.0;  ///< R F_R L [N m]
   /// How uncertain the outputs are because the odometry is (its twist covariance carried through the models).
   EstimateCovariance covariance;
+  /// The twist's distance from rest in units of its declared noise (motionToNoise; -1: no usable covariance or
+  /// propagate_covariance off). At most kMotionWithinNoise: flag kMotionWithinNoise.
+  double motion_to_noise = -1.0;
 
   std::uint32_t flags = 0;    ///< estimate_flags
   double compute_time = 0.0;  ///< wall time of update() [s]
@@ -137,6 +143,7 @@ private:
   // contact frame's heading (turn rate), the kinematics in the paper frame (slips into the estimate), the models
   bool acceptable(const EstimatorInput& in, const Eigen::Vector2d& V_r, double speed) const;
   double advanceClock(double stamp, std::uint32_t& flags);
+  void judgeMotion(const EstimatorInput& in, ContactEstimateData& o) const;
   void followHeading(const Eigen::Vector2d& V_r, double speed, double dt, bool first, std::uint32_t& flags);
   ContactKinematics contactKinematics(const EstimatorInput& in, double psi_dot, ContactEstimateData& out) const;
   void runBrush(const ContactKinematics& kin, double dt, double omega_z, ContactEstimateData& out);
