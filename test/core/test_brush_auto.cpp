@@ -94,12 +94,14 @@ TEST(BrushAuto, WithinItsTargetAtRandomPoints)
       BrushForces f;
       for (int step = 0; step < 5; ++step)
         f = model.update(k, 0.01);
-      const BrushForces ref = BrushSteady(q.p).evaluate(q.sigma, q.phi, q.chi * q.phi, (1 - q.chi) * q.phi, 1e-8,
+      // the reference to 1e-6 (eq. 4b's solver spends its reference budget before 1e-8 at some tilted points)
+      const BrushForces ref = BrushSteady(q.p).evaluate(q.sigma, q.phi, q.chi * q.phi, (1 - q.chi) * q.phi, 1e-6,
                                                         nullptr, BrushSteady::kReferenceWork);
+      ASSERT_FALSE(ref.flags & brush_flags::kAccuracyNotMet) << "point " << i;
       const double error = forceDistance(f, ref, q.p);
       worst = std::max(worst, error / target);
-      EXPECT_LE(error, target) << "target " << target << " point " << i << " ran " << toString(model.lastModel());
-      EXPECT_LE(error, f.error_estimate + 1e-12) << "target " << target << " point " << i;
+      EXPECT_LE(error, target + ref.error_estimate) << "target " << target << " point " << i << " ran " << toString(model.lastModel());
+      EXPECT_LE(error, f.error_estimate + ref.error_estimate) << "target " << target << " point " << i;
       EXPECT_NE(model.lastModel(), BrushModelKind::Transient);  // constant inputs: a steady state
     }
     std::printf("auto at target %.0e: largest error %.2f of the target over 90 points\n", target, worst);

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <functional>
 
 namespace sphere_contact_estimator::path
 {
@@ -17,6 +16,10 @@ constexpr double kEdgeShare = 1e-2;  // of the tolerance: what the unintegrated 
 constexpr double kMaxTurnError = 1e-2;  // rad per step, wherever the bound is: the events read the direction
 constexpr double kStiffStep = 8.0;  // W h beyond which a relaxed direction follows the slow manifold (Magnus: h < pi / W)
 constexpr double kMagnusReach = 2.0;  // W h within which the sixth-order step's error follows d^(7/5)
+// Where the bound is below a tenth of its peak a step may be up to this many of the map's scale long: its forces are
+// small, so the integrand's change over it matters less. A slow-manifold step never is: the quartic through its five
+// points interpolates the manifold only over the map's scale (longer ones missed the error at 2 of 120 random points).
+constexpr double kFaintStretch = 4.0;
 constexpr double kRelaxed = 0.2;    // rad off the slow manifold: relaxed enough that the rest decays as if linear
 // The sixth-order step's error against the difference d of the fourth- and sixth-order ones: both errors scale with
 // powers of (|B| h), h^7 and h^5, so err6 ~ c d^(7/5) with c independent of the scale; c = 1.6 - 3.9 measured over
@@ -397,6 +400,7 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     }
   }
   bool armed = start.armed;
+  bool was_quasi = false;
   int quasi_refused = 5;  // steps since the slow manifold last served (a refused attempt waits a few steps to retry)
   double drift = 0.0;                                 // direction error carried into later steps
   const double density = tol_ / std::max(L, 1e-12);  // error allowed per unit travel
@@ -415,7 +419,8 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     }
     if (out)
       out->work += kStepWork;
-    const double step = std::min({ h, s_end - s, map_.longestStep() });
+    const double faint = was_quasi ? 1.0 : std::clamp(0.1 / std::max(n0.f, 1e-300), 1.0, kFaintStretch);
+    const double step = std::min({ h, s_end - s, map_.longestStep() * faint });
     const bool last = step >= s_end - s;
     const Node n[3] = { node(s + kC[0] * step), node(s + kC[1] * step), node(s + kC[2] * step) };
     const Node nE = node(s + step);
@@ -483,7 +488,6 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     cd e6;
     double de = 0.0, err = 0.0;
     bool smooth = false;
-    std::function<cd(double, const Node&)> inside;
     if (quasi)
     {
       e6 = std::polar(1.0, manifold[4] + eta0 * std::exp(-lambda * step)) * nE.w_hat;
@@ -493,12 +497,6 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
       err = qs_err + std::abs(eta0) * (std::abs(eta0) + 1.0 / lambda) / (lambda * step);
       de = err;
       smooth = true;
-      inside = [&](double x, const Node& at) {
-        double value = 0.0;
-        for (int k = 0; k < 5; ++k)
-          value += quarticValue(x, k) * manifold[k];
-        return std::polar(1.0, value) * at.w_hat;
-      };
     }
     // sixth- and fourth-order Magnus approximations of the step's log from the same Gauss nodes
     const Mat& B1 = in_drive ? n[0].Bd : n[0].B;
@@ -546,12 +544,21 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
       smooth = in_drive && std::norm(magnus(0.5) - std::polar(1.0, hermite(0.5))) <= std::max(de * de, 1e-26);
       // the sixth-order error model holds within the Magnus series' reach (W h well below pi); beyond, the difference
       err = smooth && W_max * step <= kMagnusReach ? kSixthOrder * std::pow(de, 1.4) : de;
-      inside = [&](double x, const Node& at) {
-        if (smooth)
-          return std::polar(1.0, hermite(x)) * at.w_hat;
-        return in_drive ? magnus(x) * at.w_hat : magnus(x);
-      };
     }
+    // the direction inside the step: on the slow manifold (the quartic through its five points), the Hermite
+    // interpolant, or the fourth-order Magnus approximation from the start
+    const auto inside = [&](double x, const Node& at) {
+      if (quasi)
+      {
+        double value = 0.0;
+        for (int k = 0; k < 5; ++k)
+          value += quarticValue(x, k) * manifold[k];
+        return std::polar(1.0, value) * at.w_hat;
+      }
+      if (smooth)
+        return std::polar(1.0, hermite(x)) * at.w_hat;
+      return in_drive ? magnus(x) * at.w_hat : magnus(x);
+    };
     cd e_at[3];
     for (int j = 0; j < 3; ++j)
       e_at[j] = inside(kC[j], n[j]);
@@ -694,13 +701,19 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     h = step * std::clamp(0.9 * std::pow(1.0 / over, smooth && !quasi ? 1.0 / 7.0 : 0.2), 0.2, 4.0);
     // A Magnus step in the drive's frame that ends relaxed onto the drive where the law pulls hard: the next step may be
     // long enough for the slow manifold (the Magnus steps would stay below pi / W).
+    was_quasi = quasi;
     if (quasi)
       quasi_refused = 0;
     if (!quasi && in_drive && nE.W_abs * h < kStiffStep && ++quasi_refused > 4)
     {
-      const double r = nE.Kd / nE.W_abs;
-      if (std::abs(r) < 0.5 && std::abs(std::arg(e6 * std::conj(nE.w_hat)) - std::asin(r)) <= kRelaxed)
-        h = std::max(h, 1.25 * kStiffStep / nE.W_abs);
+      const double r = nE.Kd / nE.W_abs, wanted = 1.25 * kStiffStep / nE.W_abs;
+      if (std::abs(r) < 0.5 && std::abs(std::arg(e6 * std::conj(nE.w_hat)) - std::asin(r)) <= kRelaxed &&
+          wanted <= map_.longestStep())
+      {
+        h = std::max(h, wanted);
+        was_quasi = true;   // the attempt is capped as a slow-manifold step
+        quasi_refused = 0;  // and is not repeated for a few steps if it fails (it was at every step)
+      }
     }
   }
   return finish(0.0);
