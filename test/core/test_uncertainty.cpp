@@ -198,49 +198,55 @@ TEST(ForceCovariance, ZeroGivesExactlyZeroAndBadCovariancesAreRefused)
 TEST(ForceCovariance, SteadyModelAgainstMonteCarlo)
 {
   // Seeded random operating points over the envelope, from adhesion to full sliding with spin, tilt and not, the
-  // three pressures; the slips spread by 5 % of their size with a random correlation (a spread that keeps the model
-  // smooth). 10^4 draws of the steady model each: standard deviations within 10 %, correlations within 0.1.
-  std::mt19937_64 rng(31);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  int checked = 0;
-  double worst_sd = 0.0;
-  for (int i = 0; i < 6; ++i)
+  // three pressures, under both sliding laws; the slips spread by 5 % of their size with a random correlation (a
+  // spread that keeps the model smooth). 4000 draws of the steady model each (the sampling error of a standard
+  // deviation is then about 1 %, of a correlation 0.02), each within 2 % of the spread: standard deviations within
+  // 10 %, correlations within 0.1.
+  for (const SlidingLaw law : { SlidingLaw::Coulomb, SlidingLaw::Rigid })
   {
-    const BrushParameters p = test::drawEnvelopeParameters(rng, i);
-    const double scale = std::pow(10.0, -2.0 * u(rng));
-    const Eigen::Vector2d sigma = scale * Eigen::Vector2d(0.3 * (2.0 * u(rng) - 1.0), 0.1 * (2.0 * u(rng) - 1.0));
-    const double phi = scale * (2.0 * u(rng) - 1.0) / p.a, chi = 0.3 + 0.6 * u(rng);
-    const Eigen::Vector3d sd(0.05 * std::abs(sigma.x()) + 1e-5, 0.05 * std::abs(sigma.y()) + 1e-5,
-                             0.05 * std::abs(phi) + 1e-5 / p.a);
-    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-    R(0, 1) = R(1, 0) = 0.6 * (2.0 * u(rng) - 1.0);
-    R(1, 2) = R(2, 1) = 0.3 * (2.0 * u(rng) - 1.0);
-    const Eigen::Matrix3d S = sd.asDiagonal() * R * sd.asDiagonal();
-    const ForceCovariance c = propagateSlipCovariance(BrushModelKind::Steady, p, sigma, phi, chi, S);
-    ASSERT_TRUE(c.defined);
-    EXPECT_EQ(c.method, CovarianceMethod::Unscented);
-    EXPECT_LE(c.evaluations, 12);
-    const BrushSteady steady(p);
-    const double tolerance = std::max(1e-7, 0.005 * c.spread(p));
-    const Eigen::Matrix3d mc = monteCarlo<3, 3>(
-        Eigen::Vector3d(sigma.x(), sigma.y(), phi), S,
-        [&](const Eigen::Vector3d& x) {
-          const BrushForces f = steady.evaluate({ x(0), x(1) }, x(2), chi * x(2), (1.0 - chi) * x(2), tolerance);
-          return Eigen::Vector3d(f.F_x, f.F_y, f.M_z);
-        },
-        10000, rng);
-    const double limit = p.mu * p.F_z;
-    const BrushForces nominal = steady.evaluate(sigma, phi, chi * phi, (1.0 - chi) * phi, 1e-4);
-    const std::string where = "point " + std::to_string(i) + " (sliding " + std::to_string(nominal.sliding_fraction) +
-                              ", tilt " + std::to_string(p.tilt) + ")";
-    expectClose<3>(c.covariance, mc, Eigen::Vector3d(1e-5 * limit, 1e-5 * limit, 1e-5 * limit * p.a), 0.10, 0.1, where);
-    for (int k = 0; k < 3; ++k)
-      if (mc(k, k) > 0.0)
-        worst_sd = std::max(worst_sd, std::abs(std::sqrt(c.covariance(k, k) / mc(k, k)) - 1.0));
-    ++checked;
+    std::mt19937_64 rng(31);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int checked = 0;
+    double worst_sd = 0.0;
+    for (int i = 0; i < 6; ++i)
+    {
+      const BrushParameters p = test::drawEnvelopeParameters(rng, i, law);
+      const double scale = std::pow(10.0, -2.0 * u(rng));
+      const Eigen::Vector2d sigma = scale * Eigen::Vector2d(0.3 * (2.0 * u(rng) - 1.0), 0.1 * (2.0 * u(rng) - 1.0));
+      const double phi = scale * (2.0 * u(rng) - 1.0) / p.a, chi = 0.3 + 0.6 * u(rng);
+      const Eigen::Vector3d sd(0.05 * std::abs(sigma.x()) + 1e-5, 0.05 * std::abs(sigma.y()) + 1e-5,
+                               0.05 * std::abs(phi) + 1e-5 / p.a);
+      Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+      R(0, 1) = R(1, 0) = 0.6 * (2.0 * u(rng) - 1.0);
+      R(1, 2) = R(2, 1) = 0.3 * (2.0 * u(rng) - 1.0);
+      const Eigen::Matrix3d S = sd.asDiagonal() * R * sd.asDiagonal();
+      const ForceCovariance c = propagateSlipCovariance(BrushModelKind::Steady, p, sigma, phi, chi, S);
+      ASSERT_TRUE(c.defined);
+      EXPECT_EQ(c.method, CovarianceMethod::Unscented);
+      EXPECT_LE(c.evaluations, 12);
+      const BrushSteady steady(p);
+      const double tolerance = std::max(1e-7, 0.02 * c.spread(p));
+      const Eigen::Matrix3d mc = monteCarlo<3, 3>(
+          Eigen::Vector3d(sigma.x(), sigma.y(), phi), S,
+          [&](const Eigen::Vector3d& x) {
+            const BrushForces f = steady.evaluate({ x(0), x(1) }, x(2), chi * x(2), (1.0 - chi) * x(2), tolerance);
+            return Eigen::Vector3d(f.F_x, f.F_y, f.M_z);
+          },
+          4000, rng);
+      const double limit = p.mu * p.F_z;
+      const BrushForces nominal = steady.evaluate(sigma, phi, chi * phi, (1.0 - chi) * phi, 1e-4);
+      const std::string where = std::string(toString(law)) + " point " + std::to_string(i) + " (sliding " +
+                                std::to_string(nominal.sliding_fraction) + ", tilt " + std::to_string(p.tilt) + ")";
+      expectClose<3>(c.covariance, mc, Eigen::Vector3d(1e-5 * limit, 1e-5 * limit, 1e-5 * limit * p.a), 0.10, 0.1, where);
+      for (int k = 0; k < 3; ++k)
+        if (mc(k, k) > 0.0)
+          worst_sd = std::max(worst_sd, std::abs(std::sqrt(c.covariance(k, k) / mc(k, k)) - 1.0));
+      ++checked;
+    }
+    std::printf("%s law: largest relative error of a standard deviation %.3f over %d points\n", toString(law), worst_sd,
+                checked);
+    EXPECT_EQ(checked, 6);
   }
-  RecordProperty("worst_sd_relative_error", std::to_string(worst_sd));
-  EXPECT_EQ(checked, 6);
 }
 
 TEST(ForceCovariance, SaysWhereTheForcesBendOverTheSpread)
