@@ -1,4 +1,4 @@
-// Every brush model on any parameters and kinematics: finite, |F_t| <= mu F_z, an error estimate >= 0, or a clear
+// Every brush model under both sliding laws on any parameters and kinematics: finite, |F_t| <= mu F_z, an error estimate >= 0, or a clear
 // rejection. The cost per input is bounded (resolution <= 8, at most 4 steps, each within 64 transient substeps,
 // targets >= 1 % (auto's >= 5 %, so that it rarely grows its lattice), the steady solver's work budget; the truncation
 // at kMaxSubsteps, the growth and the tight targets have their unit tests and the accuracy program), so that CI runs
@@ -26,6 +26,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   p.tilt = in.in(0.0, 1.0) < 0.5;
   p.pressure = static_cast<PressureDistribution>(static_cast<int>(in.in(0.0, 2.99)));
   p.resolution = 2 + static_cast<int>(in.in(0.0, 6.99));
+  p.sliding_law = in.in(0.0, 1.0) < 0.5 ? SlidingLaw::Coulomb : SlidingLaw::Rigid;
   p.accuracy_target = in.in(1e-2, 1.0);
   const auto kind = static_cast<BrushModelKind>(1 + static_cast<int>(in.in(0.0, 3.99)));  // linear .. auto
   if (kind == BrushModelKind::Auto)

@@ -17,6 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   s.rolling_resistance_model = static_cast<CylinderModelKind>(static_cast<int>(in.in(0.0, 3.99)));
   s.tilt = in.in(0.0, 1.0) < 0.5;
   s.resolution = 4 + static_cast<int>(in.in(0.0, 4.99));
+  s.sliding_law = in.in(0.0, 1.0) < 0.5 ? SlidingLaw::Coulomb : SlidingLaw::Rigid;
   ContactEstimator e(s);
   for (int message = 0; message < 16 && in.more(); ++message)
   {
@@ -51,6 +52,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       std::abort();
     if (d && !(std::isfinite(d->brush.F_x) && std::isfinite(d->brush.M_z) && d->slip.allFinite() &&
                std::isfinite(d->rolling_resistance_force) && std::isfinite(d->turn_rate) && std::isfinite(d->heading)))
+      std::abort();
+    if (d && !(d->motion_to_noise >= 0.0 || d->motion_to_noise == -1.0))  // a distance, infinity, or -1: never NaN
       std::abort();
   }
   return 0;
