@@ -22,11 +22,14 @@ fi
 grep -E "warning: .*sanitiz" "$B.build.log" || true  # only shows the warnings; the build's status is above
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1" UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # The accuracy sweeps (hundreds of random operating points and histories against converged references) run the same
-# code as the tests kept here, at 15x the release build's cost under the sanitizers: 15 of the job's 18 minutes.
+# code as the tests kept here, at 15x the release build's cost under the sanitizers (the Coulomb law's references made
+# them longer still).
 # scripts/test.sh runs them in the release build; the code they run is run here by the other tests, and under ASan by
 # the fuzz targets (scripts/fuzz.sh).
 SWEEPS="BrushAuto.AlongTheDemoManoeuvre:BrushAuto.EstimateCoversRandomHistories"
 SWEEPS+=":BrushTransient.ErrorEstimateCoversNoisyHistoriesAtRandomPoints:ForceCovariance.SteadyModelAgainstMonteCarlo"
+SWEEPS+=":BrushSteady.ErrorEstimateBoundsTheErrorOnRandomPoints:BrushAuto.WithinItsTargetAtRandomPoints"
+SWEEPS+=":BrushTransient.ConvergesMonotonicallyOnTheFigure4Set"
 rc=0
 for t in "${TESTS[@]}"; do
   log "$t (ASan + UBSan)"
