@@ -200,7 +200,12 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   if (dt > 0.0)
   {
     const double omega_gamma = p_.tilt ? kin.omegaGamma() : 0.0;
-    const double travel = (kin.V_r.norm() + std::abs(omega_gamma) * (p_.a + h_)) * dt;
+    double travel = (kin.V_r.norm() + std::abs(omega_gamma) * (p_.a + h_)) * dt;
+    // Under eq. (4b) the step is also one of time: the tips' motion (the drive, V_s + A_omega x) is resolved as the
+    // roots' (at standstill with spin it is the only motion, and one step per message left a first-order error at
+    // the bound's scale)
+    if (p_.sliding_law == SlidingLaw::Coulomb)
+      travel = std::max(travel, (kin.V_s.norm() + std::abs(kin.omega_z) * (p_.a + h_)) * dt);
     double angle = std::abs(omega_gamma) * dt;
     if (p_.tilt)
       angle = std::max(angle, std::abs(kin.psi_dot) * dt);
@@ -379,7 +384,10 @@ void BrushTransient::coulombStep(const ContactKinematics& kin, const FrictionCap
     half = trial(half, x_half, x1, 0.5 * t);
     cap.apply(half, x1, half);
     const double n = adhering.norm(), b = p_.mu * r.q_z / p_.k;
-    step_error_[p] = step_error_[p] * (n > 0.0 ? std::min(1.0, b / n) : 1.0) + 2.0 * (u - half).norm();
+    // the combination's own error is smaller than the first-order one by a further power of the step's expansion
+    // parameter, the tip's motion over the bound
+    const double theta = b > 0.0 ? std::min(1.0, (adhering - u0).norm() / b) : 1.0;
+    step_error_[p] = step_error_[p] * (n > 0.0 ? std::min(1.0, b / n) : 1.0) + 2.0 * theta * (u - half).norm();
     const Eigen::Vector2d combined = 2.0 * half - u;
     const double c = combined.norm();
     if (c > 0.0)

@@ -15,6 +15,11 @@ namespace sphere_contact_estimator
 {
 namespace
 {
+constexpr double kCovarianceFloor = 1e-4;  // the tightest tolerance of a sigma point's evaluation [mu F_z]
+}  // namespace
+
+namespace
+{
 Eigen::Matrix2d rotation(double angle)
 {
   const double c = std::cos(angle), s = std::sin(angle);
@@ -119,7 +124,9 @@ ForceCovariance propagate(BrushModelKind kind, const BrushParameters& p, const E
   };
   ForceCovariance guess;
   guess.covariance = J * Sigma * J.transpose();
-  const auto tolerance = [](double spread) { return std::clamp(0.05 * spread, 1e-6, 1e-2); };
+  // (not below 1e-4 of mu F_z: a spread smaller than 2e-3 is then known to about 1e-4, which no user of a force's
+  // uncertainty resolves, and eq. 4b's solver spends up to 10x longer at 1e-6)
+  const auto tolerance = [](double spread) { return std::clamp(0.05 * spread, kCovarianceFloor, 1e-2); };
   const double first = tolerance(guess.spread(p));
   Unscented<N, 3> u = transform(first);
   out.evaluations = u.evaluations;

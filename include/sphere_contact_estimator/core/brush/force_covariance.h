@@ -22,7 +22,8 @@ namespace sphere_contact_estimator
 /// - The steady, transient and auto models: the unscented transform (2 sigma points at +-sqrt(3) standard
 ///   deviations along each of Sigma's principal axes with a spread, up to 8, and the mean, for the bend) through the
 ///   steady model, each to a tolerance of a twentieth of the largest spread it resolves (a component whose spread is
-///   far smaller is resolved to that, not to its own). A stateless map is needed for sigma points, and an error in the inputs that persists over the patch's
+///   far smaller is resolved to that, not to its own), and never below 1e-4 of mu F_z (a spread below 2e-3 of mu F_z
+///   is known to about 1e-4 of it). A stateless map is needed for sigma points, and an error in the inputs that persists over the patch's
 ///   memory moves the transient state to the steady one of the moved inputs: the steady sensitivity is that of an
 ///   input error held for a transit (a bias); white noise on messages closer than a transit moves the forces less.
 ///   The linearisation is exact only while the model is smooth over the spread; the sliding limit, the onset of
