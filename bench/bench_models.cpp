@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
-#include <vector>
+#include <cstdint>
+#include <cstdio>
 #include <string>
+#include <vector>
 
 // Google Benchmark
 #include <benchmark/benchmark.h>
@@ -26,11 +28,18 @@ namespace sce = sphere_contact_estimator;
 
 namespace
 {
-sce::BrushParameters figure4(int resolution, bool tilt)
+// The sliding law as a benchmark argument: SlidingLaw's number (0 coulomb, 1 rigid), as the node's parameter.
+constexpr sce::SlidingLaw kLaws[] = { sce::SlidingLaw::Coulomb, sce::SlidingLaw::Rigid };
+const std::vector<int64_t> kLawArgs{ 0, 1 };
+
+sce::SlidingLaw lawArg(int64_t arg) { return static_cast<sce::SlidingLaw>(arg); }
+
+sce::BrushParameters figure4(int resolution, bool tilt, sce::SlidingLaw law = sce::SlidingLaw::Coulomb)
 {
   sce::BrushParameters p;  // a = 0.05 m, k = 1.023e8, F_z = 3000 N, mu = 1: the paper's Fig. 4
   p.resolution = resolution;
   p.tilt = tilt;
+  p.sliding_law = law;
   return p;
 }
 
@@ -53,22 +62,26 @@ void BM_BrushLinear(benchmark::State& state)
 BENCHMARK(BM_BrushLinear);
 
 // The steady model at each point of the paper's Fig. 4 curves (sigma_x from -1 to 1 in steps of 0.1, sigma_y in
-// {0, 0.05, 0.1, 0.2}, phi = 3.33 1/m, chi_gamma = 0.9), without and with tilt, at three targets: one benchmark
-// per point, so that the report takes the median over the set.
-void BM_BrushSteadyFigure4(benchmark::State& state, double target, bool tilt, double sigma_x, double sigma_y)
+// {0, 0.05, 0.1, 0.2}, phi = 3.33 1/m, chi_gamma = 0.9), without and with tilt, under each sliding law, at three
+// targets: one benchmark per point, so that the report takes the median over the set.
+void BM_BrushSteadyFigure4(benchmark::State& state, sce::SlidingLaw law, double target, bool tilt, double sigma_x,
+                           double sigma_y)
 {
-  sce::BrushParameters p = figure4(16, tilt);
+  sce::BrushParameters p = figure4(16, tilt, law);
   p.accuracy_target = target;
   const sce::BrushSteady model(p);
   for (auto _ : state)
     benchmark::DoNotOptimize(model.evaluate({ sigma_x, sigma_y }, 3.33, 0.9 * 3.33, 0.1 * 3.33));
 }
 
-// The package's first steady solver (marching with a cap per cell, test/support) over the same set: its cost
-// does not depend on the point, so one benchmark cycles through the set.
+// The package's first steady solver (marching with a cap per cell, test/support; under eq. 4b the FASTSIM-like return
+// mapping) over the same set: its cost does not depend on the point, so one benchmark cycles through the set. The
+// resolutions are model_accuracy's list, about sqrt(2) apart, so that the report finds the time of the one that
+// reaches 1 % and 0.1 % in the same run as the steady solver's.
 void BM_BrushMarchingFigure4(benchmark::State& state)
 {
-  const sce::test::BrushMarching model(figure4(static_cast<int>(state.range(0)), state.range(1) != 0));
+  const sce::test::BrushMarching model(
+      figure4(static_cast<int>(state.range(0)), state.range(1) != 0, lawArg(state.range(2))));
   const double sigma_ys[] = { 0.0, 0.05, 0.1, 0.2 };
   std::size_t i = 0;
   for (auto _ : state)
@@ -78,34 +91,38 @@ void BM_BrushMarchingFigure4(benchmark::State& state)
     ++i;
   }
 }
-BENCHMARK(BM_BrushMarchingFigure4)->ArgsProduct({ { 4, 8, 12, 16, 24, 32, 48, 64, 96, 128 }, { 0, 1 } })->ArgNames({ "resolution", "tilt" });
+BENCHMARK(BM_BrushMarchingFigure4)
+    ->ArgsProduct({ { 8, 11, 16, 23, 32, 45, 64, 91, 128, 181, 256, 362, 512 }, { 0, 1 }, kLawArgs })
+    ->ArgNames({ "resolution", "tilt", "law" });
 
 // The old operating points' hardest one, spin against slip (sigma = (0, -0.05), phi = 10 1/m), at each target.
 void BM_BrushSteadySpinAgainstSlip(benchmark::State& state)
 {
-  sce::BrushParameters p = figure4(16, false);
+  sce::BrushParameters p = figure4(16, false, lawArg(state.range(1)));
   p.accuracy_target = std::pow(10.0, -static_cast<double>(state.range(0)));
   const sce::BrushSteady model(p);
   for (auto _ : state)
     benchmark::DoNotOptimize(model.evaluate({ 0.0, -0.05 }, 10.0, 0.0, 0.0));
 }
-BENCHMARK(BM_BrushSteadySpinAgainstSlip)->DenseRange(2, 4)->ArgName("target_exponent");
+BENCHMARK(BM_BrushSteadySpinAgainstSlip)->ArgsProduct({ { 2, 3, 4 }, kLawArgs })->ArgNames({ "target_exponent", "law" });
 
 // One odometry step of 1 ms at 1 m/s (a 1 kHz driver), in steady rolling.
 void BM_BrushTransientStep(benchmark::State& state)
 {
-  sce::BrushTransient model(figure4(static_cast<int>(state.range(0)), state.range(1) != 0));
+  sce::BrushTransient model(figure4(static_cast<int>(state.range(0)), state.range(1) != 0, lawArg(state.range(2))));
   model.update(kKinematics, 0.2);  // settle
   for (auto _ : state)
     benchmark::DoNotOptimize(model.update(kKinematics, 1e-3));
 }
-BENCHMARK(BM_BrushTransientStep)->ArgsProduct({ { 8, 12, 16, 24, 32, 48 }, { 0, 1 } })->ArgNames({ "resolution", "tilt" });
+BENCHMARK(BM_BrushTransientStep)
+    ->ArgsProduct({ { 8, 12, 16, 24, 32, 48 }, { 0, 1 }, kLawArgs })
+    ->ArgNames({ "resolution", "tilt", "law" });
 
 // The same with noise on the slips and the spin at every step (recorded odometry): the inputs are never held, so the
 // rows' correction (no tilt) is re-evaluated each patch radius of travel.
 void BM_BrushTransientNoisyStep(benchmark::State& state)
 {
-  sce::BrushTransient model(figure4(static_cast<int>(state.range(0)), state.range(1) != 0));
+  sce::BrushTransient model(figure4(static_cast<int>(state.range(0)), state.range(1) != 0, lawArg(state.range(2))));
   model.update(kKinematics, 0.2);  // settle
   std::mt19937_64 rng(5);
   std::normal_distribution<double> noise(0.0, 1.0);
@@ -121,16 +138,17 @@ void BM_BrushTransientNoisyStep(benchmark::State& state)
   }
 }
 BENCHMARK(BM_BrushTransientNoisyStep)
-    ->ArgsProduct({ { 8, 12, 16, 24, 32, 48 }, { 0, 1 } })
-    ->ArgNames({ "resolution", "tilt" });
+    ->ArgsProduct({ { 8, 12, 16, 24, 32, 48 }, { 0, 1 }, kLawArgs })
+    ->ArgNames({ "resolution", "tilt", "law" });
 
 // The forces' covariance from the slips' (the unscented transform through the steady model), against one steady
 // evaluation at the tolerance the sigma points use, on the Fig. 4 parameters (partial sliding with spin) and on the
 // demo robot (config/contact_estimator.yaml: a = 1 cm, k = 2e8, F_z = 49 N, mu = 0.8) at the demo bag's slips and
 // noise (0.005 m/s and 0.02 rad/s at 1.5 m/s).
-sce::BrushParameters demoRobot()
+sce::BrushParameters demoRobot(sce::SlidingLaw law)
 {
   sce::BrushParameters p;
+  p.sliding_law = law;
   p.a = 0.01;
   p.k = 2e8;
   p.F_z = 5.0 * 9.81;
@@ -141,7 +159,8 @@ sce::BrushParameters demoRobot()
 void BM_ForceCovariance(benchmark::State& state)
 {
   const bool demo = state.range(0) != 0;
-  const sce::BrushParameters p = demo ? demoRobot() : figure4(16, false);
+  const sce::SlidingLaw law = lawArg(state.range(1));
+  const sce::BrushParameters p = demo ? demoRobot(law) : figure4(16, false, law);
   const Eigen::Vector2d sigma = demo ? Eigen::Vector2d(0.003, 0.002) : Eigen::Vector2d(0.05, 0.02);
   const double phi = demo ? 0.3 : 3.33;
   const double s = demo ? 0.005 / 1.5 : 0.005;
@@ -155,13 +174,14 @@ void BM_ForceCovariance(benchmark::State& state)
   }
   state.counters["evaluations"] = evaluations;
 }
-BENCHMARK(BM_ForceCovariance)->Arg(0)->Arg(1)->ArgName("demo");
+BENCHMARK(BM_ForceCovariance)->ArgsProduct({ { 0, 1 }, kLawArgs })->ArgNames({ "demo", "law" });
 
 void BM_SteadyAtCovarianceTolerance(benchmark::State& state)
 {
   // one evaluation at the tolerance the sigma points above use (a twentieth of the forces' spread)
   const bool demo = state.range(0) != 0;
-  sce::BrushParameters p = demo ? demoRobot() : figure4(16, false);
+  const sce::SlidingLaw law = lawArg(state.range(1));
+  sce::BrushParameters p = demo ? demoRobot(law) : figure4(16, false, law);
   const Eigen::Vector2d sigma = demo ? Eigen::Vector2d(0.003, 0.002) : Eigen::Vector2d(0.05, 0.02);
   const double phi = demo ? 0.3 : 3.33;
   const double s = demo ? 0.005 / 1.5 : 0.005;
@@ -172,7 +192,7 @@ void BM_SteadyAtCovarianceTolerance(benchmark::State& state)
   for (auto _ : state)
     benchmark::DoNotOptimize(model.evaluate(sigma, phi, phi, 0.0));
 }
-BENCHMARK(BM_SteadyAtCovarianceTolerance)->Arg(0)->Arg(1)->ArgName("demo");
+BENCHMARK(BM_SteadyAtCovarianceTolerance)->ArgsProduct({ { 0, 1 }, kLawArgs })->ArgNames({ "demo", "law" });
 
 // a sweep through the contact-patch regime
 template <class Model>
@@ -202,11 +222,13 @@ void BM_CylinderTableMuRoll(benchmark::State& state)
 }
 BENCHMARK(BM_CylinderTableMuRoll);
 
-// The node's core path with its default configuration (config/contact_estimator.yaml), at 5 kHz.
+// The node's core path with its default configuration (config/contact_estimator.yaml), at 5 kHz, under each sliding
+// law (the linear model has none: once).
 void BM_EstimatorUpdate(benchmark::State& state)
 {
   sce::EstimatorSettings s;
   s.brush_model = static_cast<sce::BrushModelKind>(state.range(0));
+  s.sliding_law = lawArg(state.range(1));
   s.bristle_stiffness = 2e8;
   s.standstill_speed = 0.05;
   s.surface_stiffness = 1e8;
@@ -223,22 +245,32 @@ void BM_EstimatorUpdate(benchmark::State& state)
     benchmark::DoNotOptimize(e.update(in));
   }
 }
-BENCHMARK(BM_EstimatorUpdate)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->ArgName("brush_model");
+BENCHMARK(BM_EstimatorUpdate)
+    ->Args({ 1, 0 })
+    ->Args({ 2, 0 })
+    ->Args({ 2, 1 })
+    ->Args({ 3, 0 })
+    ->Args({ 3, 1 })
+    ->Args({ 4, 0 })
+    ->Args({ 4, 1 })
+    ->ArgNames({ "brush_model", "law" });
 }  // namespace
 
 int main(int argc, char** argv)
 {
-  for (double target : { 1e-2, 1e-3, 1e-4 })
-    for (int tilt = 0; tilt < 2; ++tilt)
-      for (double sigma_y : { 0.0, 0.05, 0.1, 0.2 })
-        for (int i = 0; i <= 20; ++i)
-        {
-          const double sigma_x = -1.0 + 0.1 * i;
-          char name[128];
-          std::snprintf(name, sizeof(name), "BM_BrushSteadyFigure4/target:%g/tilt:%d/sigma_y:%g/sigma_x:%.1f", target, tilt,
-                        sigma_y, sigma_x);
-          benchmark::RegisterBenchmark(name, BM_BrushSteadyFigure4, target, tilt != 0, sigma_x, sigma_y)->MinTime(0.02);
-        }
+  for (sce::SlidingLaw law : kLaws)
+    for (double target : { 1e-2, 1e-3, 1e-4 })
+      for (int tilt = 0; tilt < 2; ++tilt)
+        for (double sigma_y : { 0.0, 0.05, 0.1, 0.2 })
+          for (int i = 0; i <= 20; ++i)
+          {
+            const double sigma_x = -1.0 + 0.1 * i;
+            char name[160];
+            std::snprintf(name, sizeof(name), "BM_BrushSteadyFigure4/law:%s/target:%g/tilt:%d/sigma_y:%g/sigma_x:%.1f",
+                          sce::toString(law), target, tilt, sigma_y, sigma_x);
+            benchmark::RegisterBenchmark(name, BM_BrushSteadyFigure4, law, target, tilt != 0, sigma_x, sigma_y)
+                ->MinTime(0.02);
+          }
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
