@@ -35,6 +35,7 @@ BRUSH_MODELS = {1: "linear", 2: "steady", 3: "transient"}  # brush_model_used
 RR_MODELS = {1: "exact", 2: "expansion", 3: "table"}
 RR_MARKS = {2: ("C3", "point contact (past $v_c$)"), 3: ("C1", "no steady state")}  # rr_regime
 OPTIONAL = ("brush_fx_std", "brush_fy_std", "brush_mz_std", "rr_force_std")  # empty cells: unknown
+FLAG_MOTION_WITHIN_NOISE = 64  # ContactEstimate.FLAG_MOTION_WITHIN_NOISE: the motion is within the twist's noise
 DECADES = 3.0  # beyond this span a linear axis flattens the typical values to a line at zero
 LEGEND = dict(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, fontsize=8)
 
@@ -80,6 +81,9 @@ def prepare(d):
     d["mu_fz"] = np.where(mu_fz > 0, mu_fz, np.nan)  # no bound to draw where load or friction are not set
     for k in OPTIONAL:  # older CSVs have none: no bands
         d.setdefault(k, np.full(d["t"].shape, np.nan))
+    # parked: the forces are the bristles' response to the odometry's noise (older CSVs have no such flag)
+    flags = d["flags"].astype(np.int64) if "flags" in d else np.zeros(d["t"].shape, np.int64)
+    d["within_noise"] = d["brush_on"] & ((flags & FLAG_MOTION_WITHIN_NOISE) != 0)
     for k in ("brush_fx_std", "brush_fy_std", "brush_mz_std"):
         d[k] = np.where(d["brush_on"], d[k], np.nan)
     d["rr_force_std"] = np.where(d["rr_on"], d["rr_force_std"], np.nan)
@@ -160,6 +164,7 @@ def plot_forces(d, title):
         band(ax_m, t, d["brush_mz"], d["brush_mz_std"], "C4", "$\\pm 2\\sigma$ from the odometry")
     for ax in (ax_f, ax_m):
         shade(ax, t, d["sliding_fraction"] > 0.5, "C3", "mostly sliding\n(sliding fraction > 0.5)")
+        shade(ax, t, d["within_noise"], "0.5", "motion within the\nodometry's noise (parked)")
         if not on.any():
             note(ax, "brush model off (brush_model = 0):\nno forces estimated")
     finish(ax_f, "$F_x$, $F_y$ [N]")
@@ -230,6 +235,10 @@ def plot_friction_circle(d, title):
     fx, fy = d["brush_fx"], d["brush_fy"]
     if d["brush_on"].any():
         sc = ax.scatter(fx, fy, c=d["t"], s=4, cmap="viridis", label="estimates (colour: t)")
+        parked = d["within_noise"]
+        if parked.any():  # circled: forces the noise drives, not the robot's motion
+            ax.scatter(fx[parked], fy[parked], s=30, facecolors="none", edgecolors="0.4", lw=0.6,
+                       label="motion within the odometry's noise\n(parked: the bristles' response to noise)")
         cax = make_axes_locatable(ax).append_axes("right", size="4%", pad=0.1)  # as tall as the square axes
         fig.colorbar(sc, cax=cax, label="t [s]")
     else:
