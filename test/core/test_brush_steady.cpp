@@ -4,8 +4,10 @@
 // its own error estimate on random points over the envelope, symmetry, the friction limit, tilt and Assumption 4.1.
 
 // STL
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <iostream>
 #include <random>
 #include <vector>
 
@@ -627,6 +629,43 @@ TEST(BrushSteady, ErrorEstimateCoversFoldsAndBandsBesideBreakpoints)
 // deflect, so every bound on an unresolved piece is as small as the deflections (BristleField::deflectionBound).
 // Before that bound, noise in the events at the trailing edge made the integrator bound whole intervals by the
 // friction limit: 50 000 paths, a quarter of a second, and an estimate of 150 % of mu F_z.
+// Eq. (4b) where a path passes close to a spin pole (found by model_accuracy on random points): the drive swings by
+// nearly pi over a short stretch, the sliding bristle lags behind it and re-adheres for 3 % of the path. Steps that
+// straddled the swing missed that re-adhesion at some step sizes and found it at others, so the paths' structure
+// flickered with the tolerance: at targets 1e-2 and 1.2e-2 the solver spent its budget (estimate 7.6 mu F_z,
+// flagged), at 1.5e-2 it came within 6 % of it. At every target the answer now meets it, the estimate bounds the
+// error, and the work is far from the budget.
+TEST(BrushSteady, CoulombLawResolvesTheDriveSwingBesideASpinPole)
+{
+  BrushParameters p;
+  p.sliding_law = SlidingLaw::Coulomb;
+  p.pressure = PressureDistribution::Parabolic;
+  p.tilt = true;
+  p.a = 0.05232226789187126;
+  p.F_z = 25.559370293098926;
+  p.mu = 1.1945616793779779;
+  p.k = 676208668.5011388;
+  const Eigen::Vector2d sigma(0.05925570177940792, -0.0433357388990975);
+  const double phi = -3.5646600811994524, chi = 0.4500315993930466;
+  const BrushSteady model(p);
+  const BrushForces ref =
+      model.evaluate(sigma, phi, chi * phi, (1.0 - chi) * phi, 1e-7, nullptr, BrushSteady::kReferenceWork);
+  ASSERT_FALSE(ref.flags & brush_flags::kAccuracyNotMet);
+  long most = 0;
+  for (double target : { 2e-2, 1.5e-2, 1.2e-2, 1.1e-2, 1e-2, 9.5e-3, 8e-3, 5e-3, 1e-3, 1e-4 })
+  {
+    BrushSteady::Stats stats;
+    const BrushForces f = model.evaluate(sigma, phi, chi * phi, (1.0 - chi) * phi, target, &stats);
+    const double error = forceDistance(f, ref, p);
+    EXPECT_FALSE(f.flags & brush_flags::kAccuracyNotMet) << "target " << target;
+    EXPECT_LE(f.error_estimate, target) << "target " << target;
+    EXPECT_LE(error, f.error_estimate + ref.error_estimate) << "target " << target;
+    most = std::max(most, stats.work);
+  }
+  EXPECT_LT(most, BrushSteady::kMaxWork / 2);
+  std::cout << "largest work " << most << " of the budget's " << BrushSteady::kMaxWork << "\n";
+}
+
 TEST(BrushSteady, TinySlipsConvergeAtOnce)
 {
   BrushParameters p;
