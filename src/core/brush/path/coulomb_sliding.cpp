@@ -1,5 +1,4 @@
 #include "coulomb_sliding.h"
-#include "readhesion_region.h"
 #include "rigid_sliding.h"
 
 // STL
@@ -11,8 +10,7 @@ namespace sphere_contact_estimator::path
 {
 namespace
 {
-constexpr double kMaxDriveTurn = 0.5;  // rad between a step's neighbouring points
-constexpr int kDipSamples = 32;  // points per step at which the sliding speed's quartic is checked for a dip
+constexpr double kMaxDriveTurn = 0.5;  // rad between a step's neighbouring points: the drive resolved
 constexpr int kMaxSteps = 4000;      // attempted steps per piece; beyond, the path is flagged truncated
 constexpr long kStepWork = 80;       // four nodes and two 2x2 exponentials (PathIntegrals::work units)
 constexpr double kEdgeShare = 1e-2;  // of the tolerance: what the unintegrated ends of a piece may hold
@@ -403,19 +401,6 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     }
   }
   bool armed = start.armed;
-  // the ends of G's stretches ahead, in s: steps land on them
-  double breaks[2 * kMaxGIntervals];
-  int nb = 0;
-  for (int i = 0; i < start.ng; ++i)
-    for (const double t : { start.g[i].lo, start.g[i].hi })
-      if (t > tau_a && t < L)
-      {
-        const double b = map_.of(t);
-        if (b > s0 && b < s_end)
-          breaks[nb++] = b;
-      }
-  std::sort(breaks, breaks + nb);
-  int next_break = 0;
   bool was_quasi = false;
   int quasi_refused = 5;  // steps since the slow manifold last served (a refused attempt waits a few steps to retry)
   double drift = 0.0;                                 // direction error carried into later steps
@@ -436,11 +421,7 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     if (out)
       out->work += kStepWork;
     const double faint = was_quasi ? 1.0 : std::clamp(0.1 / std::max(n0.f, 1e-300), 1.0, kFaintStretch);
-    while (next_break < nb && breaks[next_break] <= s + 1e-12 * (1.0 + std::abs(s)))
-      ++next_break;
-    double step = std::min({ h, s_end - s, map_.longestStep() * faint });
-    if (next_break < nb)
-      step = std::min(step, breaks[next_break] - s);
+    const double step = std::min({ h, s_end - s, map_.longestStep() * faint });
     const bool last = step >= s_end - s;
     const Node n[3] = { node(s + kC[0] * step), node(s + kC[1] * step), node(s + kC[2] * step) };
     const Node nE = node(s + step);
@@ -458,7 +439,8 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     in_drive = in_drive && K_max <= W_max;
     // The drive must be resolved: where the path passes close to a spin pole its direction swings by up to pi over the
     // distance of closest approach, and a step whose five points straddle the swing sees neither it nor the bristle's
-    // lag behind it (whose sliding speed may vanish there: a re-adhesion that some step sizes found and others missed).
+    // lag behind it (whose sliding speed may vanish there: a re-adhesion that some step sizes found and others missed,
+    // so that the paths' structure flickered with the tolerance).
     {
       const Node* five[5] = { &n0, &n[0], &n[1], &n[2], &nE };
       double swing = 0.0;
@@ -639,31 +621,6 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
       if (quasi)
         quasi_refused = 0;
       continue;
-    }
-    // A re-adhesion window between the samples: the quartic through the law's sliding speed at the step's five points
-    // dips below zero where none of them is. Shorter steps resolve it; unresolved, the window was found at some step
-    // sizes and missed at others, and the paths' structure flickered with the tolerance (the patch integral then
-    // bisected that flicker until its budget ran out).
-    if ((out || stop_tau >= L) && !(last && end.tau >= L) && step > 1e-9 * (1.0 + std::abs(s)))
-    {
-      const double E5[5] = { pushing(n0, e), pushing(n[0], e_at[0]), pushing(n[1], e_at[1]), pushing(n[2], e_at[2]),
-                             pushing(nE, e6) };
-      if (*std::min_element(E5, E5 + 5) >= 0.0 && (armed || E5[0] > 0.0))
-      {
-        double lowest = INFINITY;
-        for (int i = 1; i < kDipSamples; ++i)
-        {
-          double value = 0.0;
-          for (int k = 0; k < 5; ++k)
-            value += quarticValue(static_cast<double>(i) / kDipSamples, k) * E5[k];
-          lowest = std::min(lowest, value);
-        }
-        if (lowest < 0.0)
-        {
-          h = 0.5 * step;
-          continue;
-        }
-      }
     }
     // re-adhesion: the first sample where the bristle is no longer pushed outward faster than the bound grows
     double stop = 1.0;  // share of the step that slides

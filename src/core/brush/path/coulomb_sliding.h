@@ -1,7 +1,6 @@
 #pragma once
 
 // Package
-#include "adhesion.h"
 #include "path_context.h"
 
 namespace sphere_contact_estimator::path
@@ -17,11 +16,6 @@ struct SlideStart
   /// Re-adhesion may be found only after the piece has seen the bristle pushed outward (after a touch that did not
   /// re-adhere, the event function starts at zero).
   bool armed = true;
-  /// The rigid law's re-adhesion region G on this path (findReAdhesionRegion), in travel: steps land on its ends.
-  /// Where the direction has relaxed onto the drive the law's sliding speed is |w| - df/dtau up to O(1/W), negative
-  /// in G: a step across a short stretch of G would see no sample inside it and miss the re-adhesion.
-  const Interval* g = nullptr;
-  int ng = 0;
 };
 
 /// Where a Coulomb sliding piece ended.

@@ -76,9 +76,6 @@ void solveCoulomb(PathContext& ctx)
 {
   const BristleField& f = ctx.field;
   const BristlePath& p = ctx.path;
-  // G, where a bristle sliding along the drive would re-adhere: the sliding steps land on its ends
-  Interval g[path::kMaxGIntervals];
-  const int ng = path::findReAdhesionRegion(ctx, g);
   // Leading edge: undeformed (eq. 8), so the bristle adheres unless the bound vanishes there and grows slower than
   // the drive would deflect it: df/dtau = dt/dtau = 2 x_e against |w| (f = t).
   const bool adhering_at_entry =
@@ -111,8 +108,6 @@ void solveCoulomb(PathContext& ctx)
     }
     else
     {
-      slide.g = g;
-      slide.ng = ng;
       const path::SlideEnd end = path::slideCoulomb(ctx, slide);
       tau = end.tau;
       if (!end.re_adheres || tau >= L)
