@@ -11,6 +11,7 @@ namespace sphere_contact_estimator::path
 namespace
 {
 constexpr double kMaxDriveTurn = 0.5;  // rad between a step's neighbouring points: the drive resolved
+constexpr int kDipSamples = 32;  // points per step at which the sliding speed's quartic is searched for a dip
 constexpr int kMaxSteps = 4000;      // attempted steps per piece; beyond, the path is flagged truncated
 constexpr long kStepWork = 80;       // four nodes and two 2x2 exponentials (PathIntegrals::work units)
 constexpr double kEdgeShare = 1e-2;  // of the tolerance: what the unintegrated ends of a piece may hold
@@ -622,17 +623,45 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
         quasi_refused = 0;
       continue;
     }
-    // re-adhesion: the first sample where the bristle is no longer pushed outward faster than the bound grows
+    // re-adhesion: the first sample where the bristle is no longer pushed outward faster than the bound grows. Beside
+    // the step's own samples, a probe where the quartic through the sliding speed at the step's five points is least,
+    // if that dips below zero between them: a re-adhesion window narrower than the samples' spacing (beside a spin
+    // pole) was otherwise found at some step sizes and missed at others, and the paths' structure flickered with the
+    // tolerance.
     double stop = 1.0;  // share of the step that slides
     if (out || stop_tau >= L)
     {
-      double prev = 0.0;
-      for (int j = 0; j <= 3; ++j)
+      const bool edge = last && end.tau >= L;  // the trailing edge: nothing beyond the step
+      double xs[5] = { kC[0], kC[1], kC[2], 1.0, 0.0 };
+      double Es[5] = { pushing(n[0], e_at[0]), pushing(n[1], e_at[1]), pushing(n[2], e_at[2]), pushing(nE, e6), 0.0 };
+      int samples = edge ? 3 : 4;
       {
-        if (j == 3 && last && end.tau >= L)
-          break;  // the trailing edge: nothing beyond
-        const double x = j < 3 ? kC[j] : 1.0;
-        const double E = j < 3 ? pushing(n[j], e_at[j]) : pushing(nE, e6);
+        const double E5[5] = { pushing(n0, e), Es[0], Es[1], Es[2], Es[3] };
+        double lowest = 0.0, at_x = 0.0;
+        for (int i = 1; i < kDipSamples; ++i)
+        {
+          const double x = static_cast<double>(i) / kDipSamples;
+          double value = 0.0;
+          for (int k = 0; k < 5; ++k)
+            value += quarticValue(x, k) * E5[k];
+          if (value < lowest)
+            lowest = value, at_x = x;
+        }
+        if (lowest < 0.0 && *std::min_element(E5, E5 + 5) >= 0.0 && !(edge && at_x > kC[2]))
+        {
+          const Node probe = node(s + at_x * step);
+          const int k = static_cast<int>(std::upper_bound(xs, xs + samples, at_x) - xs);
+          for (int i = samples; i > k; --i)
+            xs[i] = xs[i - 1], Es[i] = Es[i - 1];
+          xs[k] = at_x;
+          Es[k] = pushing(probe, inside(at_x, probe));
+          ++samples;
+        }
+      }
+      double prev = 0.0;
+      for (int j = 0; j < samples; ++j)
+      {
+        const double x = xs[j], E = Es[j];
         if (E > 0.0)
           armed = true;
         else if (armed && E < 0.0)
