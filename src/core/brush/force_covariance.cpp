@@ -16,10 +16,7 @@ namespace sphere_contact_estimator
 namespace
 {
 constexpr double kCovarianceFloor = 1e-4;  // the tightest tolerance of a sigma point's evaluation [mu F_z]
-}  // namespace
 
-namespace
-{
 Eigen::Matrix2d rotation(double angle)
 {
   const double c = std::cos(angle), s = std::sin(angle);

@@ -66,6 +66,16 @@ const auto kQuarticSlope = [] {
   return d;
 }();
 
+// The quartic's weights at the interior points i / kDipSamples, where re-adhesion is searched between a step's samples
+// (once, not at every step: each weight takes four divisions)
+const auto kDipWeights = [] {
+  std::array<std::array<double, 5>, kDipSamples - 1> w{};
+  for (int i = 1; i < kDipSamples; ++i)
+    for (int k = 0; k < 5; ++k)
+      w[i - 1][k] = quarticValue(static_cast<double>(i) / kDipSamples, k);
+  return w;
+}();
+
 /// A real 2x2 matrix [[a, b], [c, d]].
 struct Mat
 {
@@ -640,12 +650,11 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
         double lowest = 0.0, at_x = 0.0;
         for (int i = 1; i < kDipSamples; ++i)
         {
-          const double x = static_cast<double>(i) / kDipSamples;
           double value = 0.0;
           for (int k = 0; k < 5; ++k)
-            value += quarticValue(x, k) * E5[k];
+            value += kDipWeights[i - 1][k] * E5[k];
           if (value < lowest)
-            lowest = value, at_x = x;
+            lowest = value, at_x = static_cast<double>(i) / kDipSamples;
         }
         if (lowest < 0.0 && *std::min_element(E5, E5 + 5) >= 0.0 && !(edge && at_x > kC[2]))
         {
