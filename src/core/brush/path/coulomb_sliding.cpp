@@ -11,6 +11,7 @@ namespace sphere_contact_estimator::path
 namespace
 {
 constexpr double kMaxDriveTurn = 0.5;  // rad between a step's neighbouring points: the drive resolved
+const double kCosMaxDriveTurn = std::cos(kMaxDriveTurn);
 constexpr int kDipSamples = 32;  // points per step at which the sliding speed's quartic is searched for a dip
 constexpr int kMaxSteps = 4000;      // attempted steps per piece; beyond, the path is flagged truncated
 constexpr long kStepWork = 80;       // four nodes and two 2x2 exponentials (PathIntegrals::work units)
@@ -454,11 +455,11 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     // so that the paths' structure flickered with the tolerance).
     {
       const Node* five[5] = { &n0, &n[0], &n[1], &n[2], &nE };
-      double swing = 0.0;
+      // |turn| > kMaxDriveTurn between unit directions: the cosine of the turn below that of the limit (no atan2)
+      bool swings = false;
       for (int j = 0; j < 4; ++j)
-        if (five[j]->turns && five[j + 1]->turns)
-          swing = std::max(swing, std::abs(std::arg(five[j + 1]->w_hat * std::conj(five[j]->w_hat))));
-      if (swing > kMaxDriveTurn && step > 1e-9 * (1.0 + std::abs(s)))
+        swings = swings || (five[j]->turns && five[j + 1]->turns && dot(five[j + 1]->w_hat, five[j]->w_hat) < kCosMaxDriveTurn);
+      if (swings && step > 1e-9 * (1.0 + std::abs(s)))
       {
         h = 0.5 * step;
         continue;
