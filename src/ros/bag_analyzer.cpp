@@ -202,7 +202,7 @@ BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<vo
       continue;
     copy(m);
     ++result.odometry;
-    const EstimateOutputs* e = estimator.process(*odom, tf, reason);
+    const EstimateOutputs* e = estimator.process(*odom, tf, reason, m.getCallerId());
     if (!e)
       continue;
     ++result.estimates;
@@ -226,6 +226,9 @@ BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<vo
     progress(1.0);
   result.no_orientation = estimator.counters().no_orientation;
   result.rejected = estimator.counters().rejected;
+  result.dropped = estimator.counters().dropped;
+  result.out_of_order = estimator.counters().out_of_order;
+  result.tf_stale = estimator.counters().tf_stale;
   result.replaced_topics.assign(replaced.begin(), replaced.end());
   if (csv_file.is_open() && !csv_file.flush())
     throw std::runtime_error("writing " + o.csv + " failed");

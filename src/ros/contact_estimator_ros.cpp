@@ -14,7 +14,12 @@ ContactEstimatorRos::ContactEstimatorRos(ros::NodeHandle nh, ros::NodeHandle pnh
   : nh_(nh)
   , pnh_(pnh)
   , tf_listener_(tf_buffer_)
-  , updater_(nh, pnh, pnh.getNamespace())
+  , diagnostics_nh_([&] {
+    ros::NodeHandle h(nh);
+    h.setCallbackQueue(&diagnostics_queue_);
+    return h;
+  }())
+  , updater_(diagnostics_nh_, pnh, pnh.getNamespace())
   , estimator_(ContactEstimatorConfig::__getDefault__())
   , config_(ContactEstimatorConfig::__getDefault__())
 {
@@ -50,8 +55,12 @@ ContactEstimatorRos::ContactEstimatorRos(ros::NodeHandle nh, ros::NodeHandle pnh
   // A bounded queue deep enough for bursts (a bag, a driver catching up): older messages are dropped beyond it.
   odom_sub_ = nh_.subscribe("odom", queue_size, &ContactEstimatorRos::odometryCallback, this,
                             ros::TransportHints().tcpNoDelay());
-  // force_update: Updater::update() waits for ros::Time to pass its period, which a paused /clock never does
-  diagnostics_timer_ = nh_.createWallTimer(ros::WallDuration(0.25), [this](const ros::WallTimerEvent&) { updater_.force_update(); });
+  // force_update: Updater::update() waits for ros::Time to pass its period, which a paused /clock never does. On the
+  // diagnostics' own queue and thread: a long update (or a busy single-threaded node) never holds them up.
+  diagnostics_timer_ =
+      diagnostics_nh_.createWallTimer(ros::WallDuration(0.25), [this](const ros::WallTimerEvent&) { updater_.force_update(); });
+  diagnostics_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &diagnostics_queue_);
+  diagnostics_spinner_->start();
   ROS_INFO_STREAM("contact estimator: listening on " << odom_sub_.getTopic() << ", publishing "
                                                      << estimate_pub_.getTopic());
 }
@@ -63,6 +72,7 @@ ContactEstimatorRos::~ContactEstimatorRos()
   // shutdown and stop wait for a running callback to return.
   odom_sub_.shutdown();
   diagnostics_timer_.stop();
+  diagnostics_spinner_->stop();  // joins its thread
   reconfigure_server_.reset();
 }
 
@@ -80,47 +90,65 @@ void ContactEstimatorRos::reconfigureCallback(ContactEstimatorConfig& config, ui
     return;
   }
   config_ = config;
-  stale_timeout_ = config.stale_timeout;
+  {
+    std::lock_guard<std::mutex> stats(stats_mutex_);
+    stale_timeout_ = config.stale_timeout;
+    uncertainty_warning_ = config.uncertainty_warning;
+    ground_frame_ = estimator_.groundFrame();
+  }
   const EstimatorSettings& s = estimator_.estimator().settings();
   ROS_INFO("contact estimator: brush model %d (a = %.4g m, F_z = %.4g N, tilt %s), rolling resistance model %d",
            config.brush_model, s.brushParameters().a, s.verticalLoad(), s.tilt ? "on" : "off",
            config.rolling_resistance_model);
 }
 
-void ContactEstimatorRos::odometryCallback(const nav_msgs::Odometry::ConstPtr& msg)
+void ContactEstimatorRos::odometryCallback(const ros::MessageEvent<nav_msgs::Odometry const>& event)
 {
+  const nav_msgs::Odometry& msg = *event.getConstMessage();
+  {
+    std::lock_guard<std::mutex> stats(stats_mutex_);
+    ++received_;
+    ++window_received_;
+    last_received_ = ros::WallTime::now();  // wall time: a paused /clock must not freeze the age
+  }
   std::lock_guard<std::mutex> lock(mutex_);
-  ++received_;
-  ++window_received_;
-  last_received_ = ros::WallTime::now();  // wall time: a paused /clock must not freeze the age
   SkipReason reason;
-  const EstimateOutputs* out = estimator_.process(*msg, tf_buffer_, reason);
+  // the publisher's name: header.seq counts per publisher (a gap is a lost message)
+  const EstimateOutputs* out = estimator_.process(msg, tf_buffer_, reason, event.getPublisherName());
   if (!out)
   {
     if (reason == SkipReason::NoOrientation)
       ROS_WARN_THROTTLE(5.0, "contact estimator: no rotation from '%s' to the ground frame '%s' (tf: %s) and no "
                              "valid odometry orientation; message skipped",
-                        msg->child_frame_id.c_str(),
-                        (estimator_.groundFrame().empty() ? msg->header.frame_id : estimator_.groundFrame()).c_str(),
+                        msg.child_frame_id.c_str(),
+                        (estimator_.groundFrame().empty() ? msg.header.frame_id : estimator_.groundFrame()).c_str(),
                         estimator_.lastTfError().c_str());
     else
       ROS_WARN_THROTTLE(5.0, "contact estimator: odometry with a non-finite or impossible twist or stamp skipped");
+    snapshot();
     return;
   }
   const ContactEstimateData& e = *out->data;
   if (e.flags & estimate_flags::kTimeJumpReset)
     ROS_WARN("contact estimator: time went backwards (a looping bag?): state reset");
+  if (out->estimate.flags & ContactEstimate::FLAG_TF_STALE)
+    ROS_WARN_THROTTLE(5.0, "contact estimator: %s: using the odometry's own orientation", estimator_.lastTfError().c_str());
+  if (out->estimate.messages_dropped > 0)
+    ROS_WARN_THROTTLE(5.0, "contact estimator: %u odometry messages missing before this one (a gap in header.seq: the "
+                           "queue overflowed, or the source lost them)",
+                      out->estimate.messages_dropped);
 
   // by shared pointer: a subscriber in the same nodelet manager gets the message without a copy
   publish(estimate_pub_, estimate_pool_, out->estimate);
   publish(brush_wrench_pub_, brush_wrench_pool_, out->brush_wrench);
   publish(rr_wrench_pub_, rr_wrench_pool_, out->rolling_resistance_wrench);
-  ++published_;
   if (out->has_transform)
     tf_broadcaster_.sendTransform(out->contact_transform);
   if (marker_pub_.getNumSubscribers() > 0)
     publishMarkers(e, out->estimate.header);
 
+  std::lock_guard<std::mutex> stats(stats_mutex_);
+  ++published_;
   compute_sum_ += e.compute_time;
   compute_max_ = std::max(compute_max_, e.compute_time);
   ++compute_count_;
@@ -135,8 +163,21 @@ void ContactEstimatorRos::odometryCallback(const nav_msgs::Odometry::ConstPtr& m
   last_covariance_status_ = e.covariance.status;
   last_spread_ = e.covariance.brush_method == CovarianceMethod::None ? 0.0 : e.covariance.brush_spread;
   spread_max_ = std::max(spread_max_, last_spread_);
-  if (config_.uncertainty_warning > 0.0 && last_spread_ > config_.uncertainty_warning)
+  if (uncertainty_warning_ > 0.0 && last_spread_ > uncertainty_warning_)
     ++over_spread_;
+  counters_ = estimator_.counters();
+  if (last_tf_error_ != estimator_.lastTfError())
+    last_tf_error_.assign(estimator_.lastTfError());  // into its capacity: no allocation once sized
+  last_covariance_problem_ = estimator_.lastCovarianceProblem();
+}
+
+void ContactEstimatorRos::snapshot()
+{
+  std::lock_guard<std::mutex> stats(stats_mutex_);
+  counters_ = estimator_.counters();
+  if (last_tf_error_ != estimator_.lastTfError())
+    last_tf_error_.assign(estimator_.lastTfError());
+  last_covariance_problem_ = estimator_.lastCovarianceProblem();
 }
 
 void ContactEstimatorRos::publishMarkers(const ContactEstimateData& e, const std_msgs::Header& header)
@@ -147,7 +188,7 @@ void ContactEstimatorRos::publishMarkers(const ContactEstimateData& e, const std
 
 void ContactEstimatorRos::diagnoseInput(diagnostic_updater::DiagnosticStatusWrapper& status)
 {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::lock_guard<std::mutex> lock(stats_mutex_);
   const ros::WallTime now = ros::WallTime::now();
   const double window = (now - window_start_).toSec();
   const double rate = window > 0.0 ? window_received_ / window : 0.0;
@@ -156,9 +197,11 @@ void ContactEstimatorRos::diagnoseInput(diagnostic_updater::DiagnosticStatusWrap
   status.add("rate [Hz]", rate);
   status.add("received", received_);
   status.add("published", published_);
-  const OdometryEstimator::Counters& c = estimator_.counters();
+  const OdometryEstimator::Counters& c = counters_;
+  status.add("dropped (gaps in header.seq)", c.dropped);
   status.add("rejected (non-finite or impossible)", c.rejected);
   status.add("time jumps backwards", c.time_jumps);
+  status.add("stamps out of order within stamp_tolerance", c.out_of_order);
   const double age = received_ ? (now - last_received_).toSec() : -1.0;
   status.add("age of last message [s]", age);
   if (compute_count_)
@@ -177,8 +220,13 @@ void ContactEstimatorRos::diagnoseInput(diagnostic_updater::DiagnosticStatusWrap
     note(std::to_string(c.rejected - reported_rejected_) + " odometry messages rejected (non-finite twist)");
   if (c.time_jumps > reported_time_jumps_)
     note("time went backwards: state reset");
+  if (c.dropped > reported_dropped_)
+    note(std::to_string(c.dropped - reported_dropped_) +
+         " odometry messages dropped (gaps in header.seq: the queue overflowed, or the source lost them)");
   reported_rejected_ = c.rejected;
   reported_time_jumps_ = c.time_jumps;
+  reported_dropped_ = c.dropped;
+  reported_out_of_order_ = c.out_of_order;
   if (problems.empty())
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "receiving odometry");
   else
@@ -187,29 +235,45 @@ void ContactEstimatorRos::diagnoseInput(diagnostic_updater::DiagnosticStatusWrap
 
 void ContactEstimatorRos::diagnoseTf(diagnostic_updater::DiagnosticStatusWrapper& status)
 {
-  std::lock_guard<std::mutex> lock(mutex_);
-  const OdometryEstimator::Counters& c = estimator_.counters();
-  const std::string& ground = estimator_.groundFrame();
-  status.add("ground frame", ground.empty() ? std::string("(the odometry's frame)") : ground);
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  const OdometryEstimator::Counters& c = counters_;
+  status.add("ground frame", ground_frame_.empty() ? std::string("(the odometry's frame)") : ground_frame_);
   status.add("tf at the stamp", c.tf_at_stamp);
   status.add("tf latest", c.tf_latest);
+  status.add("tf older than tf_max_age (not used)", c.tf_stale);
   status.add("odometry orientation", c.from_odometry);
   status.add("skipped: no orientation", c.no_orientation);
-  status.add("last tf error", estimator_.lastTfError());
-  if (c.no_orientation > reported_no_orientation_)
+  status.add("last tf error", last_tf_error_);
+  // since the last report, not over all time: a transform that stopped shows at once
+  const std::uint64_t tf = c.tf_at_stamp + c.tf_latest - reported_tf_, odometry = c.from_odometry - reported_from_odometry_,
+                      stale = c.tf_stale - reported_tf_stale_, skipped = c.no_orientation - reported_no_orientation_;
+  if (skipped > 0)
     status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN,
                     "%lu messages skipped: no tf to the ground frame and no valid odometry orientation",
-                    static_cast<unsigned long>(c.no_orientation - reported_no_orientation_));
-  else if (c.from_odometry > 0 && c.tf_at_stamp + c.tf_latest == 0)
+                    static_cast<unsigned long>(skipped));
+  else if (stale > 0)
+    status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN,
+                    "tf stale in %lu messages (%s): the odometry's orientation was used", static_cast<unsigned long>(stale),
+                    last_tf_error_.c_str());
+  else if (odometry > 0 && tf == 0 && !ground_frame_.empty())
+    status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN,
+                    "no tf to the ground frame '%s' (%s): using the odometry's orientation", ground_frame_.c_str(),
+                    last_tf_error_.c_str());
+  else if (odometry > 0 && tf == 0)
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "no tf: using the odometry's orientation");
-  else
+  else if (tf > 0)
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "tf available");
+  else
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "no odometry since the last report");
   reported_no_orientation_ = c.no_orientation;
+  reported_tf_ = c.tf_at_stamp + c.tf_latest;
+  reported_from_odometry_ = c.from_odometry;
+  reported_tf_stale_ = c.tf_stale;
 }
 
 void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWrapper& status)
 {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::lock_guard<std::mutex> lock(stats_mutex_);
   if (!have_estimate_)
   {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "no estimate yet");
@@ -250,20 +314,20 @@ void ContactEstimatorRos::diagnoseUncertainty(diagnostic_updater::DiagnosticStat
 {
   // how far the odometry's own uncertainty moves the forces: past uncertainty_warning of mu F_z an estimate is of
   // little use to a controller
-  std::lock_guard<std::mutex> lock(mutex_);
-  const OdometryEstimator::Counters& c = estimator_.counters();
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  const OdometryEstimator::Counters& c = counters_;
   status.add("covariance status", toString(last_covariance_status_));
   status.add("force spread, last [fraction of mu F_z]", last_spread_);
   status.add("force spread, largest since the last report", spread_max_);
-  status.add("warning above", config_.uncertainty_warning);
+  status.add("warning above", uncertainty_warning_);
   status.add("unusable twist covariances", c.bad_covariance);
-  const char* problem = estimator_.lastCovarianceProblem();
+  const char* problem = last_covariance_problem_;
   status.add("last covariance problem", problem ? problem : "");
   std::string problems;
   const auto note = [&problems](const std::string& text) { problems += (problems.empty() ? "" : "; ") + text; };
   if (over_spread_ > 0)
     note(std::to_string(over_spread_) + " estimates with a force spread above " +
-         std::to_string(config_.uncertainty_warning) + " of mu F_z (largest " + std::to_string(spread_max_) + ")");
+         std::to_string(uncertainty_warning_) + " of mu F_z (largest " + std::to_string(spread_max_) + ")");
   if (c.bad_covariance > reported_bad_covariance_)
     note(std::to_string(c.bad_covariance - reported_bad_covariance_) + " twist covariances unusable (" +
          (problem ? problem : "?") + "): estimates without uncertainty");

@@ -2,6 +2,7 @@
 
 // STL
 #include <cmath>
+#include <cstdio>
 
 // ROS
 #include <tf2/exceptions.h>
@@ -47,12 +48,49 @@ void OdometryEstimator::configureFrames(const ContactEstimatorConfig& config)
   ground_frame_ = config.ground_frame;
   contact_frame_ = config.contact_frame.empty() ? std::string("contact_patch") : config.contact_frame;
   publish_tf_ = config.publish_tf;
+  tf_max_age_ = config.tf_max_age;
 }
 
 void OdometryEstimator::reset()
 {
   estimator_.reset();
   last_transform_stamp_ = ros::Time();
+  n_sequences_ = 0;
+}
+
+std::uint32_t OdometryEstimator::sequenceGap(const std::string& publisher, std::uint32_t seq)
+{
+  ++messages_;
+  int slot = -1;
+  for (int i = 0; i < n_sequences_; ++i)
+    if (sequences_[i].publisher == publisher)
+      slot = i;
+  std::uint32_t gap = 0;
+  if (slot < 0)
+  {
+    // a new publisher: a free slot, else the one unseen longest (its string is reused: no allocation once sized)
+    if (n_sequences_ < static_cast<int>(sequences_.size()))
+      slot = n_sequences_++;
+    else
+    {
+      slot = 0;
+      for (int i = 1; i < n_sequences_; ++i)
+        if (sequences_[i].used < sequences_[slot].used)
+          slot = i;
+    }
+    sequences_[slot].publisher.assign(publisher);
+  }
+  else
+  {
+    // forward by more than one: lost messages. Backwards or equal (a restarted publisher, a looping bag, a source
+    // that leaves seq at 0) or a jump past a million (not a loss a queue makes): none counted
+    const std::uint32_t ahead = seq - sequences_[slot].last;  // modulo 2^32: wraps around correctly
+    if (ahead > 1 && ahead < 1000000u)
+      gap = ahead - 1;
+  }
+  sequences_[slot].last = seq;
+  sequences_[slot].used = messages_;
+  return gap;
 }
 
 // Transform at the stamp, else tf's latest; never waits. Counts which one it was.
@@ -73,6 +111,19 @@ bool OdometryEstimator::lookup(const tf2::BufferCore& tf, const std::string& tar
     if (tf.canTransform(target, source, ros::Time(0), &last_tf_error_))
     {
       out = tf.lookupTransform(target, source, ros::Time(0));
+      // the latest is used only close to the stamp: a transform that stopped long ago may have turned since (a
+      // static chain has stamp 0 and holds at any time)
+      const double age = out.header.stamp.isZero() ? 0.0 : std::abs((stamp - out.header.stamp).toSec());
+      if (age > tf_max_age_)
+      {
+        ++counters_.tf_stale;
+        tf_stale_ = true;
+        char text[256];
+        std::snprintf(text, sizeof(text), "latest transform from '%s' to '%s' is %.3g s from the stamp (tf_max_age %.3g s)",
+                      source.c_str(), target.c_str(), age, tf_max_age_);
+        last_tf_error_.assign(text);  // into the string's capacity: no allocation once sized
+        return false;
+      }
       ++counters_.tf_latest;
       return true;
     }
@@ -123,9 +174,13 @@ bool OdometryEstimator::groundPose(const nav_msgs::Odometry& msg, const std::str
 }
 
 const EstimateOutputs* OdometryEstimator::process(const nav_msgs::Odometry& msg, const tf2::BufferCore& tf,
-                                                  SkipReason& reason)
+                                                  SkipReason& reason, const std::string& publisher)
 {
   reason = SkipReason::None;
+  // counted on arrival, also for a message skipped below: the gap is before it
+  const std::uint32_t dropped = sequenceGap(publisher, msg.header.seq);
+  counters_.dropped += dropped;
+  tf_stale_ = false;
   const std::string& ground = ground_frame_.empty() ? msg.header.frame_id : ground_frame_;
   Eigen::Quaterniond q;
   Eigen::Vector3d centre;
@@ -170,6 +225,8 @@ const EstimateOutputs* OdometryEstimator::process(const nav_msgs::Odometry& msg,
     ++counters_.time_jumps;
     last_transform_stamp_ = ros::Time();
   }
+  if (e->flags & estimate_flags::kStampOutOfOrder)
+    ++counters_.out_of_order;
   out_.data = e;
 
   ContactEstimate& m = out_.estimate;
@@ -178,6 +235,11 @@ const EstimateOutputs* OdometryEstimator::process(const nav_msgs::Odometry& msg,
   toMessage(*e, m);
   if (counters_.from_odometry != from_odometry)
     m.flags |= ContactEstimate::FLAG_ORIENTATION_FROM_ODOMETRY;
+  if (tf_stale_)
+    m.flags |= ContactEstimate::FLAG_TF_STALE;
+  m.messages_dropped = dropped;
+  if (dropped > 0)
+    m.flags |= ContactEstimate::FLAG_MESSAGES_DROPPED;
   out_.brush_wrench.header = m.header;
   brushWrench(*e, out_.brush_wrench);
   out_.rolling_resistance_wrench.header = m.header;

@@ -189,6 +189,11 @@ int main(int argc, char** argv)
                 static_cast<unsigned long long>(r.odometry), static_cast<unsigned long long>(r.estimates),
                 static_cast<unsigned long long>(r.no_orientation), static_cast<unsigned long long>(r.rejected),
                 static_cast<unsigned long long>(r.copied));
+    if (r.dropped + r.out_of_order + r.tf_stale > 0)
+      std::printf("  odometry stream       %llu messages missing (gaps in header.seq), %llu stamps out of order (answered "
+                  "without a reset), %llu with tf older than tf_max_age (odometry orientation)\n",
+                  static_cast<unsigned long long>(r.dropped), static_cast<unsigned long long>(r.out_of_order),
+                  static_cast<unsigned long long>(r.tf_stale));
     std::printf("  speed                 %.3f s of bag in %.3f s (%.0f x real time, %.0f odometry messages/s)\n",
                 r.bag_seconds, wall, wall > 0.0 ? r.bag_seconds / wall : 0.0, wall > 0.0 ? r.odometry / wall : 0.0);
     for (const std::string& t : r.replaced_topics)

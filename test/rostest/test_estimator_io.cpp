@@ -19,6 +19,7 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <dynamic_reconfigure/client.h>
 #include <nav_msgs/Odometry.h>
+#include <tf2_msgs/TFMessage.h>
 #include <visualization_msgs/MarkerArray.h>
 #include <ros/ros.h>
 
@@ -52,6 +53,7 @@ protected:
       std::lock_guard<std::mutex> lock(mutex_);
       for (const auto& s : m->status)
         diagnostics_[s.name] = s;
+      ++diagnostics_count_;
     });
     ASSERT_TRUE(waitFor([this] { return odom_pub_.getNumSubscribers() > 0 && estimate_sub_.getNumPublishers() > 0; }, 20.0));
     client_ = std::make_unique<dynamic_reconfigure::Client<sce::ContactEstimatorConfig>>(kNode);
@@ -113,6 +115,7 @@ protected:
   ros::Subscriber estimate_sub_, diag_sub_;
   std::vector<sce::ContactEstimate> estimates_;
   std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics_;
+  int diagnostics_count_ = 0;  // reports received
   std::unique_ptr<dynamic_reconfigure::Client<sce::ContactEstimatorConfig>> client_;
   sce::ContactEstimatorConfig config_;
 };
@@ -458,6 +461,141 @@ TEST_F(EstimatorIo, MarkersWhileSubscribed)
   EXPECT_EQ(m.markers[cm::kBrushForce].type, visualization_msgs::Marker::ARROW);
   EXPECT_LT(m.markers[cm::kBrushForce].points[1].x, 0.0);  // the brush force opposes the sliding
   g_clock += 1.0;
+}
+
+// Stamps that jitter (a USB source at 2 kHz): those a little earlier than the last are answered without a reset.
+TEST_F(EstimatorIo, JitteredStampsAreAnsweredWithoutAReset)
+{
+  for (int i = 0; i < 60; ++i)  // every third stamp 0.7 ms late: the next one is 0.2 ms before it
+    odom_pub_.publish(odometry(g_clock + 0.5e-3 * i + (i % 3 == 1 ? 0.7e-3 : 0.0), 1.0, 0.0, 0.05, 0.0, 0.0));
+  ASSERT_TRUE(waitFor([&] { return estimates_.size() >= 60; }, 10.0)) << estimates_.size();
+  std::lock_guard<std::mutex> lock(mutex_);
+  int out_of_order = 0;
+  for (std::size_t i = 1; i < estimates_.size(); ++i)  // (the first comes after the gap between tests)
+  {
+    EXPECT_FALSE(estimates_[i].flags & (sce::ContactEstimate::FLAG_TIME_JUMP_RESET | sce::ContactEstimate::FLAG_GAP_RESET)) << i;
+    out_of_order += (estimates_[i].flags & sce::ContactEstimate::FLAG_STAMP_OUT_OF_ORDER) != 0;
+  }
+  EXPECT_EQ(out_of_order, 20);
+  g_clock += 1.0;
+}
+
+// A burst beyond the node's queue (queue_size 1000) while each message takes long: the oldest are dropped, and every
+// one of them is counted, in the estimate after the gap and in the diagnostics.
+TEST_F(EstimatorIo, ABurstBeyondTheQueueIsCountedAsDropped)
+{
+  const sce::ContactEstimatorConfig original = config_;
+  ASSERT_TRUE(reconfigure([](sce::ContactEstimatorConfig& c) {
+    c.brush_model = 3;  // transient on a fine lattice: about a millisecond a message
+    c.resolution = 128;
+  }));
+  // one message first: the node knows this publisher's sequence from here on
+  odom_pub_.publish(odometry(g_clock, 1.0, 0.0, 0.05, 0.0, 0.0));
+  ASSERT_TRUE(waitFor([&] { return estimates_.size() == 1; }, 10.0));
+  constexpr int kBurst = 3000;
+  for (int i = 1; i <= kBurst; ++i)
+    odom_pub_.publish(odometry(g_clock + 1e-4 * i, 1.0, 0.0, 0.05, 0.0, 0.0));
+  const ros::Time last(g_clock + 1e-4 * kBurst);
+  ASSERT_TRUE(waitFor([&] { return !estimates_.empty() && estimates_.back().header.stamp == last; }, 60.0))
+      << "the burst's last message was not answered";
+  ros::WallDuration(1.0).sleep();  // a diagnostics report after it
+  {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::uint64_t dropped = 0;
+  for (std::size_t i = 1; i < estimates_.size(); ++i)
+  {
+    dropped += estimates_[i].messages_dropped;
+    EXPECT_EQ(estimates_[i].messages_dropped > 0, (estimates_[i].flags & sce::ContactEstimate::FLAG_MESSAGES_DROPPED) != 0);
+  }
+  EXPECT_GT(dropped, 0u) << "the burst did not overflow the queue: " << estimates_.size() << " answered";
+  EXPECT_EQ(estimates_.size() - 1 + dropped, static_cast<std::size_t>(kBurst));  // each message answered or counted
+  const auto it = diagnostics_.find(kNode.substr(1) + ": odometry input");
+  ASSERT_NE(it, diagnostics_.end());
+  std::uint64_t reported = 0;
+  for (const auto& kv : it->second.values)
+    if (kv.key == "dropped (gaps in header.seq)")
+      reported = std::stoull(kv.value);
+  EXPECT_GE(reported, dropped);
+  }
+  EXPECT_TRUE(reconfigure([&](sce::ContactEstimatorConfig& c) { c = original; }));
+  g_clock += 2.0;
+}
+
+// One update that takes seconds (the transient model on a fine lattice rolling 5 cm): the diagnostics go on at their
+// rate meanwhile (their own queue and thread, and a lock the update does not hold).
+TEST_F(EstimatorIo, DiagnosticsDoNotWaitForALongUpdate)
+{
+  const sce::ContactEstimatorConfig original = config_;
+  ASSERT_TRUE(reconfigure([](sce::ContactEstimatorConfig& c) {
+    c.brush_model = 3;
+    c.resolution = 256;
+  }));
+  odom_pub_.publish(odometry(g_clock, 1.0, 0.0, 0.05, 0.0, 0.0));
+  ASSERT_TRUE(waitFor([&] { return estimates_.size() == 1; }, 10.0));
+  int before = 0;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    before = diagnostics_count_;
+  }
+  const ros::WallTime start = ros::WallTime::now();
+  odom_pub_.publish(odometry(g_clock + 0.05, 1.0, 0.0, 0.05, 0.0, 0.0));  // 640 substeps of a 256^2 lattice
+  ASSERT_TRUE(waitFor([&] { return estimates_.size() == 2; }, 60.0));
+  const double busy = (ros::WallTime::now() - start).toSec();
+  int during = 0;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    during = diagnostics_count_ - before;
+  }
+  // reports every 0.25 s; allow for half of them (a loaded machine)
+  if (busy > 1.0)
+    EXPECT_GE(during, static_cast<int>(busy / 0.25 / 2.0)) << "over an update of " << busy << " s";
+  else
+    ADD_FAILURE() << "the update took only " << busy << " s: it does not test the diagnostics' independence";
+  EXPECT_TRUE(reconfigure([&](sce::ContactEstimatorConfig& c) { c = original; }));
+  g_clock += 2.0;
+}
+
+// tf that stops: its last transform is used up to tf_max_age (0.5 s in config/contact_estimator.yaml) past it, then
+// the odometry's own orientation, flagged, and the tf diagnostic warns. (Last: the node keeps the transform.)
+TEST_F(EstimatorIo, ATransformThatStoppedIsNotUsedPastItsAge)
+{
+  ros::Publisher tf_pub = nh_.advertise<tf2_msgs::TFMessage>("/tf", 100);
+  ASSERT_TRUE(waitFor([&] { return tf_pub.getNumSubscribers() > 0; }, 10.0));
+  // the body yawed by 90 degrees in odom from g_clock to g_clock + 1; the odometry's own pose says 0
+  for (int i = 0; i <= 100; ++i)
+  {
+    tf2_msgs::TFMessage m;
+    m.transforms.resize(1);
+    geometry_msgs::TransformStamped& x = m.transforms[0];
+    x.header.stamp = ros::Time(g_clock + 0.01 * i);
+    x.header.frame_id = "odom";
+    x.child_frame_id = "base_link";
+    x.transform.rotation.z = std::sin(0.25 * M_PI);
+    x.transform.rotation.w = std::cos(0.25 * M_PI);
+    tf_pub.publish(m);
+  }
+  ros::WallDuration(0.5).sleep();  // in the node's buffer
+  odom_pub_.publish(odometry(g_clock + 0.5, 1.0, 0.0, 0.0, 0.0, 0.0));  // tf at the stamp
+  odom_pub_.publish(odometry(g_clock + 1.2, 1.0, 0.0, 0.0, 0.0, 0.0));  // tf's latest, 0.2 s old
+  odom_pub_.publish(odometry(g_clock + 2.0, 1.0, 0.0, 0.0, 0.0, 0.0));  // 1 s old: not used
+  ASSERT_TRUE(waitFor([&] { return estimates_.size() >= 3; }, 10.0));
+  ASSERT_TRUE(waitFor([&] {
+    const auto it = diagnostics_.find(kNode.substr(1) + ": tf");
+    return it != diagnostics_.end() && it->second.level == diagnostic_msgs::DiagnosticStatus::WARN &&
+           it->second.message.find("stale") != std::string::npos;
+  }, 10.0)) << "the tf diagnostic did not warn";
+  std::lock_guard<std::mutex> lock(mutex_);
+  const sce::ContactEstimate* at_stamp = estimateAt(ros::Time(g_clock + 0.5));
+  const sce::ContactEstimate* latest = estimateAt(ros::Time(g_clock + 1.2));
+  const sce::ContactEstimate* stale = estimateAt(ros::Time(g_clock + 2.0));
+  ASSERT_TRUE(at_stamp && latest && stale);
+  EXPECT_NEAR(at_stamp->heading, 0.5 * M_PI, 1e-6);
+  EXPECT_NEAR(latest->heading, 0.5 * M_PI, 1e-6);
+  EXPECT_FALSE(latest->flags & (sce::ContactEstimate::FLAG_TF_STALE | sce::ContactEstimate::FLAG_ORIENTATION_FROM_ODOMETRY));
+  EXPECT_NEAR(stale->heading, 0.0, 1e-6);
+  EXPECT_TRUE(stale->flags & sce::ContactEstimate::FLAG_TF_STALE);
+  EXPECT_TRUE(stale->flags & sce::ContactEstimate::FLAG_ORIENTATION_FROM_ODOMETRY);
+  g_clock += 3.0;
 }
 
 }  // namespace

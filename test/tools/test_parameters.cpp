@@ -48,6 +48,7 @@ TEST(Parameters, CfgDefaultsAreTheCoreDefaults)
   SAME(standstill_speed);
   SAME(turn_rate_time_constant);
   SAME(max_step);
+  SAME(stamp_tolerance);
   SAME(rolling_resistance_model);
   SAME(surface_stiffness);
   SAME(surface_damping);

@@ -32,6 +32,9 @@ struct BagAnalysisResult
   std::uint64_t odometry = 0;       ///< odometry messages read
   std::uint64_t estimates = 0;      ///< estimates written
   std::uint64_t no_orientation = 0, rejected = 0;  ///< skipped, by reason
+  std::uint64_t dropped = 0;        ///< missing before the recording: gaps in the odometry's header.seq
+  std::uint64_t out_of_order = 0;   ///< stamps within stamp_tolerance before the last: answered without a reset
+  std::uint64_t tf_stale = 0;       ///< the bag's latest transform older than tf_max_age: odometry orientation used
   std::uint64_t copied = 0;         ///< input messages copied to the output
   std::vector<std::string> replaced_topics;  ///< input topics the estimates replace (a bag recorded live)
   double bag_seconds = 0.0;         ///< span of the bag time analysed [s]

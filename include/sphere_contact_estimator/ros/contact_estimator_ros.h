@@ -14,6 +14,7 @@
 #include <dynamic_reconfigure/server.h>
 #include <geometry_msgs/WrenchStamped.h>
 #include <nav_msgs/Odometry.h>
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -38,6 +39,9 @@ namespace sphere_contact_estimator
 /// Topics (relative to the node handle, remappable): subscribes `odom` (nav_msgs/Odometry); publishes
 /// `contact_estimate`, `brush_wrench`, `rolling_resistance_wrench`, `contact_markers` (only while
 /// subscribed) and /diagnostics; broadcasts the contact frame on tf.
+///
+/// The diagnostics run on their own callback queue and thread, and read only a snapshot of the counters that each
+/// update leaves under a lock of its own: they never wait for an update, however long it takes.
 class ContactEstimatorRos
 {
 public:
@@ -49,7 +53,9 @@ public:
   ContactEstimatorRos& operator=(const ContactEstimatorRos&) = delete;
 
 private:
-  void odometryCallback(const nav_msgs::Odometry::ConstPtr& msg);
+  void odometryCallback(const ros::MessageEvent<nav_msgs::Odometry const>& event);
+  // what the diagnostics read, copied after each update and configuration (under stats_mutex_)
+  void snapshot();
   void reconfigureCallback(ContactEstimatorConfig& config, uint32_t level);
   void publishMarkers(const ContactEstimateData& estimate, const std_msgs::Header& header);
   /// Copies the message into one from the pool (no allocation once its strings have their capacity) and
@@ -77,11 +83,15 @@ private:
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<ContactEstimatorConfig>> reconfigure_server_;
+  // the diagnostics' own queue and thread (a long update never delays them)
+  ros::CallbackQueue diagnostics_queue_;
+  ros::NodeHandle diagnostics_nh_;
   diagnostic_updater::Updater updater_;
   ros::WallTimer diagnostics_timer_;  // wall time: diagnostics (stale input) go on when sim time stops
+  std::unique_ptr<ros::AsyncSpinner> diagnostics_spinner_;
 
-  // **** parameters and state, shared by the odometry, reconfigure and diagnostics callbacks (which run
-  // concurrently in a multi-threaded nodelet manager): guarded by mutex_
+  // **** parameters and state, shared by the odometry and reconfigure callbacks (which run concurrently in a
+  // multi-threaded nodelet manager): guarded by mutex_
   std::mutex mutex_;
   OdometryEstimator estimator_;    // the same class bag_analyze runs
   ContactEstimatorConfig config_;  // the accepted configuration
@@ -90,7 +100,14 @@ private:
   MessagePool<ContactEstimate> estimate_pool_;
   MessagePool<geometry_msgs::WrenchStamped> brush_wrench_pool_, rr_wrench_pool_;
 
-  // **** diagnostics counters (guarded by mutex_; the estimator keeps its own)
+  // **** what the diagnostics read: guarded by stats_mutex_, never held during an update
+  std::mutex stats_mutex_;
+  OdometryEstimator::Counters counters_;  // the estimator's, copied after each message
+  std::string ground_frame_, last_tf_error_;
+  const char* last_covariance_problem_ = nullptr;
+  double uncertainty_warning_ = 0.0;
+  std::uint64_t reported_dropped_ = 0, reported_out_of_order_ = 0, reported_tf_stale_ = 0;
+  std::uint64_t reported_tf_ = 0, reported_from_odometry_ = 0;  // tf (at the stamp or latest) and odometry, at the last report
   std::uint64_t received_ = 0, published_ = 0;
   std::uint64_t window_received_ = 0;
   std::uint64_t reported_rejected_ = 0, reported_time_jumps_ = 0, reported_no_orientation_ = 0;  // at the last report

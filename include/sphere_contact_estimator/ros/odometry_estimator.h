@@ -1,6 +1,7 @@
 #pragma once
 
 // STL
+#include <array>
 #include <cstdint>
 #include <string>
 
@@ -39,8 +40,8 @@ enum class SkipReason
   RejectedInput,  ///< non-finite or impossible twist or stamp
 };
 
-/// Odometry in, estimate messages out: frames (tf at the stamp, else tf's latest, else the odometry's own
-/// orientation; never waits), the core ContactEstimator, and the conversions to messages. Transport-free: the
+/// Odometry in, estimate messages out: frames (tf at the stamp, else tf's latest if within tf_max_age of the stamp,
+/// else the odometry's own orientation; never waits), gaps in each publisher's header.seq counted as dropped messages, the core ContactEstimator, and the conversions to messages. Transport-free: the
 /// node and nodelet (ContactEstimatorRos, live tf) and bag_analyze (tf read from the bag) run this same class,
 /// so live and offline give the same numbers. Not thread-safe: callers serialise.
 class OdometryEstimator
@@ -52,8 +53,11 @@ public:
   void configure(const ContactEstimatorConfig& config);
 
   /// Processes one message with the transforms in `tf`. Returns nullptr (and sets reason) when it is
-  /// skipped; otherwise the outputs, valid until the next call.
-  const EstimateOutputs* process(const nav_msgs::Odometry& msg, const tf2::BufferCore& tf, SkipReason& reason);
+  /// skipped; otherwise the outputs, valid until the next call. `publisher` names the message's source (the
+  /// connection's callerid): header.seq counts per publisher, so a gap in it is a message lost on the way (a
+  /// subscriber queue that overflowed, the source, the network); empty: one source.
+  const EstimateOutputs* process(const nav_msgs::Odometry& msg, const tf2::BufferCore& tf, SkipReason& reason,
+                                 const std::string& publisher = std::string());
 
   /// Forgets the history (time, heading, transient state).
   void reset();
@@ -68,6 +72,9 @@ public:
     std::uint64_t tf_at_stamp = 0, tf_latest = 0, from_odometry = 0, no_orientation = 0, rejected = 0,
                   time_jumps = 0;
     std::uint64_t bad_covariance = 0;  ///< twist covariances marked unknown or invalid (the estimate goes on without)
+    std::uint64_t tf_stale = 0;        ///< messages whose only transform was older than tf_max_age (not used)
+    std::uint64_t dropped = 0;         ///< messages missing in the publishers' header.seq
+    std::uint64_t out_of_order = 0;    ///< stamps within stamp_tolerance before the last: answered without a reset
   };
   const Counters& counters() const { return counters_; }
   const std::string& lastTfError() const { return last_tf_error_; }
@@ -82,9 +89,23 @@ private:
   bool lookup(const tf2::BufferCore& tf, const std::string& target, const std::string& source, const ros::Time& stamp,
               geometry_msgs::TransformStamped& out);
 
+  // messages missing before this one from this publisher (0 for the first of a publisher, a restart or a loop)
+  std::uint32_t sequenceGap(const std::string& publisher, std::uint32_t seq);
+
   ContactEstimator estimator_;
   std::string ground_frame_, contact_frame_;
   bool publish_tf_ = true;
+  double tf_max_age_ = 0.5;
+  bool tf_stale_ = false;  // this message found only a transform older than tf_max_age_
+  struct Sequence
+  {
+    std::string publisher;
+    std::uint32_t last = 0;
+    std::uint64_t used = 0;  // when it was last seen (a message count): the oldest is replaced
+  };
+  std::array<Sequence, 8> sequences_;  // a few publishers on one topic; a ninth replaces the longest unseen
+  int n_sequences_ = 0;
+  std::uint64_t messages_ = 0;
   ros::Time last_transform_stamp_;  // one contact transform per stamp: no TF_REPEATED_DATA
   EstimateOutputs out_;
   Counters counters_;

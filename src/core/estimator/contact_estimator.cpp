@@ -150,7 +150,9 @@ double ContactEstimator::advanceClock(double stamp, std::uint32_t& flags)
   if (have_last_)
   {
     const double gap = stamp - last_stamp_;
-    if (gap < 0.0)
+    if (gap < 0.0 && -gap <= settings_.stamp_tolerance)
+      flags |= estimate_flags::kStampOutOfOrder;  // jitter (a USB source): a reset would lose the whole state
+    else if (gap < 0.0)
     {
       reset();
       flags |= estimate_flags::kTimeJumpReset;
@@ -168,7 +170,7 @@ double ContactEstimator::advanceClock(double stamp, std::uint32_t& flags)
     else
       dt = gap;
   }
-  if (!(flags & estimate_flags::kDuplicateStamp))  // sub-nanosecond steps add up to one that counts
+  if (!(flags & (estimate_flags::kDuplicateStamp | estimate_flags::kStampOutOfOrder)))  // sub-nanosecond steps add up to one that counts; the clock never goes back
     last_stamp_ = stamp;
   have_last_ = true;
   return dt;

@@ -42,6 +42,9 @@ constexpr std::uint32_t kHeadingReset = 1u << 4;    ///< rolling direction re-in
 /// The motion is within the noise the twist covariance declares (motionToNoise <= kMotionWithinNoise): a parked
 /// robot. The brush forces are then the bristles' response to that noise, not a measured sliding.
 constexpr std::uint32_t kMotionWithinNoise = 1u << 6;  // (bit 5 is the ROS layer's: orientation from odometry)
+/// The stamp is earlier than the last one by at most stamp_tolerance (jitter): answered at its inputs, nothing
+/// advanced, nothing reset (the clock stays at the latest stamp).
+constexpr std::uint32_t kStampOutOfOrder = 1u << 7;
 }  // namespace estimate_flags
 
 /// One estimate, everything in the ROS contact frame (REP 103: x along the rolling direction, y left,

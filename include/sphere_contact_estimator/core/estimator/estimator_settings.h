@@ -45,6 +45,9 @@ struct EstimatorSettings
   double standstill_speed = 0.05;  ///< V_r below which slips are undefined [m/s] (above odometry noise)
   double turn_rate_time_constant = 0.05;  ///< low-pass of the psi_dot estimate [s]
   double max_step = 0.5;           ///< a longer gap between messages resets the transient state [s]
+  /// A stamp earlier than the last by at most this (a source whose stamps jitter) is answered at the inputs it
+  /// brings without advancing or resetting anything (flag kStampOutOfOrder); further back, the state resets [s]
+  double stamp_tolerance = 0.005;
   // rolling resistance (Poeschel et al.), the sphere taken as a cylinder of effective length L
   CylinderModelKind rolling_resistance_model = CylinderModelKind::Table;
   double surface_stiffness = 1e8;  ///< k [N/m^3]
