@@ -107,10 +107,11 @@ std::vector<Point> underLaw(std::vector<Point> points, sce::SlidingLaw law)
 
 bool converged(const sce::BrushForces& f) { return (f.flags & sce::brush_flags::kAccuracyNotMet) == 0; }
 
+// Eq. (4b)'s references by the general stepper: a solution independent of the default's collocation
 sce::BrushForces steadyReference(const Point& q, double tolerance)
 {
   return sce::BrushSteady(q.p).evaluate(q.sigma, q.phi, q.pg(), q.pp(), tolerance, nullptr,
-                                        sce::BrushSteady::kReferenceWork);
+                                        sce::BrushSteady::kReferenceWork, sce::CoulombStepper::General);
 }
 
 double distance(const sce::BrushForces& f, const sce::BrushForces& g, const sce::BrushParameters& p)

@@ -282,9 +282,10 @@ TEST(BrushSteady, ErrorEstimateBoundsTheErrorOnRandomPoints)
       {
         const RandomPoint q = drawPoint(draw, i, 1.0, law);
         const BrushSteady model(q.p);
-        // the reference to 1e-8 (rigid) or 1e-6 (Coulomb: stiff fields cost far more there), its own estimate counted
+        // the reference to 1e-8 (rigid) or 1e-6 (Coulomb: stiff fields cost far more there; by the general stepper, an
+        // independent solution), its own estimate counted
         const BrushForces ref = model.evaluate(q.sigma, q.phi, q.phi_gamma, q.phi_psi, law == SlidingLaw::Rigid ? 1e-8 : 1e-6,
-                                               nullptr, BrushSteady::kReferenceWork);
+                                               nullptr, BrushSteady::kReferenceWork, CoulombStepper::General);
         const BrushForces f = model.evaluate(q.sigma, q.phi, q.phi_gamma, q.phi_psi, target);
         const double error = forceDistance(f, ref, q.p);
         const bool flagged = f.flags & brush_flags::kAccuracyNotMet;  // the work budget ran out first

@@ -29,7 +29,7 @@ BrushForces BrushSteady::evaluate(const Eigen::Vector2d& sigma, double phi, doub
 }
 
 BrushForces BrushSteady::evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi,
-                                  double tolerance, Stats* stats, long max_work) const
+                                  double tolerance, Stats* stats, long max_work, CoulombStepper stepper) const
 {
   if (!(std::isfinite(tolerance) && tolerance > 0.0 && tolerance <= 1.0))
   {
@@ -39,7 +39,7 @@ BrushForces BrushSteady::evaluate(const Eigen::Vector2d& sigma, double phi, doub
   }
   if (!(max_work > 0))
     throw std::invalid_argument("steady brush model: the work budget must be positive");
-  return solve(sigma, phi, phi_gamma, phi_psi, tolerance, nullptr, stats, max_work);
+  return solve(sigma, phi, phi_gamma, phi_psi, tolerance, nullptr, stats, max_work, stepper);
 }
 
 BrushForces BrushSteady::evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi,
@@ -54,7 +54,8 @@ bool BrushSteady::field(const Eigen::Vector2d& sigma, double phi, double phi_gam
 }
 
 BrushForces BrushSteady::solve(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi,
-                               double tolerance, const Visitor* visit, Stats* stats, long max_work) const
+                               double tolerance, const Visitor* visit, Stats* stats, long max_work,
+                               CoulombStepper stepper) const
 {
   BrushForces out;
   if (p_.tilt && std::abs(phi_gamma) * p_.a > 1.0)
@@ -67,12 +68,12 @@ BrushForces BrushSteady::solve(const Eigen::Vector2d& sigma, double phi, double 
     return out;  // mu F_z = 0: no force, exactly
   const double c = peakFactor(p_.pressure);
   const double scale = c / pi;  // dimensionless integrals -> fractions of mu F_z
-  PatchIntegral I = integratePatch(f, tolerance / scale, max_work);
+  PatchIntegral I = integratePatch(f, tolerance / scale, max_work, stepper);
   if (!I.converged && I.error > 100.0 * tolerance / scale && tolerance < 1e-2)
   {
     // the budget ran out before the structure was even located (a tolerance far tighter than the point allows):
     // a looser one within half the budget again gives the best answer this budget can
-    const PatchIntegral looser = integratePatch(f, 100.0 * tolerance / scale, max_work / 2);
+    const PatchIntegral looser = integratePatch(f, 100.0 * tolerance / scale, max_work / 2, stepper);
     if (looser.error < I.error)
     {
       const long work = I.work;

@@ -55,6 +55,17 @@ bool makeBristleField(const BrushParameters& p, const std::complex<double>& sigm
 /// The bound at the patch centre, mu q_z(0) / k [m]: the unit of the field's deflections.
 double deflectionUnit(const BrushParameters& p);
 
+/// How solvePath steps a sliding piece under eq. (4b) (SlidingLaw::Coulomb).
+enum class CoulombStepper
+{
+  /// Stiff collocation in the frame of the bristle's own direction (path/coulomb_collocation.h) wherever it can go on,
+  /// the general stepper beyond (near a spin pole where the collocation's steps would be tiny): the default.
+  Collocation,
+  /// The general stepper (Magnus steps of the half-angle system, path/coulomb_sliding.h) on every piece: an independent
+  /// solution to check the collocation's answers and estimates against.
+  General,
+};
+
 /// No limit on a path's work (solvePath).
 constexpr long kUnlimitedWork = 1L << 62;
 
@@ -124,10 +135,11 @@ struct PathIntegrals
 /// law: under SlidingLaw::Rigid the bristle lies along the drive, re-adheres where the bound grows along the path
 /// faster than the drive pushes it (df/dtau >= |w|, the region G, fixed in the plane; located as roots), and is
 /// integrated by Gauss-Legendre rules graded towards the spin pole; under SlidingLaw::Coulomb its direction follows
-/// eq. (4b) (path/coulomb_sliding.h) and it re-adheres where its own sliding speed vanishes. `tolerance` bounds
-/// the sliding pieces' error. A path whose work would pass `work_limit` stops there, flagged truncated.
+/// eq. (4b) (path/coulomb_collocation.h, path/coulomb_sliding.h) and it re-adheres where its own sliding speed vanishes. `tolerance` bounds
+/// the sliding pieces' error. A path whose work would pass `work_limit` stops there, flagged truncated. `stepper` chooses
+/// how eq. (4b)'s sliding pieces are stepped (both to the tolerance).
 PathIntegrals solvePath(const BristleField& field, const BristlePath& path, double tolerance, bool keep_pieces = false,
-                        long work_limit = kUnlimitedWork);
+                        long work_limit = kUnlimitedWork, CoulombStepper stepper = CoulombStepper::Collocation);
 
 /// Re-adhesion margin at z in the front half of the patch: (df/dtau)^2 - |w|^2, scaled by a positive factor
 /// (4 (1 - r^2) for the Hertzian pressure); >= 0 exactly where a sliding bristle re-adheres (the region G, fixed

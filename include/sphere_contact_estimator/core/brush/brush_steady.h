@@ -15,12 +15,15 @@ namespace sphere_contact_estimator
 /// or, with tilt, circles about the tilting centre (0, 1/phi_gamma) (eq. 44a). Along each the bristle obeys
 /// du/dsigma_s = sigma + A_phi x [+ A_phi_psi u with tilt] (eqs. 11, 32), starting undeformed at the leading
 /// edge (eq. 8): without friction this is eq. 23 resp. eq. 51. With friction (eq. 4) it slides where |k u|
-/// would exceed mu q_z, with |q| = mu q_z along the rigid sliding field sigma + A_phi x (Sect. 6), and
-/// re-adheres from its capped deflection where the bound grows along the path faster than that field pushes
-/// it (docs: the re-adhesion region G). Both events are located exactly on every path (solvePath); the
-/// pieces between them are integrated exactly (adhesion) or by graded Gauss rules (sliding); across paths
-/// an adaptive Gauss-Kronrod quadrature, split where the event structure changes, integrates until its
-/// error estimate meets the tolerance (integratePatch).
+/// would exceed mu q_z, with |q| = mu q_z, its direction by the sliding law (BrushParameters::sliding_law): eq. (4b),
+/// opposing the tip's full micro-sliding velocity (the direction turns towards the drive at a rate inversely
+/// proportional to the bound; it re-adheres where its own sliding speed vanishes), or Sect. 6's rigid approximation,
+/// along the rigid sliding field sigma + A_phi x (it re-adheres from its capped deflection where the bound grows along
+/// the path faster than that field pushes it: the re-adhesion region G). Events are located exactly on every path
+/// (solvePath); adhesion pieces are integrated exactly, sliding pieces by graded Gauss rules (rigid) or by stiff
+/// collocation of the direction equation (eq. 4b, path/coulomb_collocation.h); across paths an adaptive Gauss-Kronrod
+/// quadrature, split where the event structure changes, integrates until its error estimate meets the tolerance
+/// (integratePatch).
 ///
 /// The tolerance is BrushParameters::accuracy_target, a fraction of mu F_z bounding each of F_x, F_y and
 /// M_z / a; every answer carries its estimate in BrushForces::error_estimate (flagged kAccuracyNotMet when
@@ -47,9 +50,11 @@ public:
     long work = 0;  ///< their work (PathIntegrals::work)
   };
   /// The same to `tolerance` (a fraction of mu F_z), in (0, 1], within `max_work` (references for tests and
-  /// benchmarks ask for more than kMaxWork).
+  /// benchmarks ask for more than kMaxWork), eq. (4b)'s sliding pieces stepped by `stepper` (CoulombStepper::General:
+  /// an independent solution to check the default's against).
   BrushForces evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi, double tolerance,
-                       Stats* stats = nullptr, long max_work = kMaxWork) const;
+                       Stats* stats = nullptr, long max_work = kMaxWork,
+                       CoulombStepper stepper = CoulombStepper::Collocation) const;
 
   /// The same, and the field on a regular grid of paths and points along them to visit(x, u, sliding) [m]
   /// (for drawing the zones).
@@ -71,7 +76,8 @@ public:
 
 private:
   BrushForces solve(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi, double tolerance,
-                    const Visitor* visit, Stats* stats = nullptr, long max_work = kMaxWork) const;
+                    const Visitor* visit, Stats* stats = nullptr, long max_work = kMaxWork,
+                    CoulombStepper stepper = CoulombStepper::Collocation) const;
 };
 
 }  // namespace sphere_contact_estimator

@@ -35,8 +35,10 @@ struct PatchIntegral
 /// where a third, degree-7 rule on the same samples shows the rules converging, and twice the largest of the three
 /// differences where it does not. The along-path quadrature's own bound (solvePath) is added. Every bound on an unresolved piece uses the field's own bound on
 /// |u| (BristleField::deflectionBound), so tiny slips converge at once. Stops, unconverged, when the paths' work
-/// reaches `max_work`: the paths left unsolved and the intervals left unrefined are bounded, never guessed.
-PatchIntegral integratePatch(const BristleField& field, double tolerance, long max_work);
+/// reaches `max_work`: the paths left unsolved and the intervals left unrefined are bounded, never guessed. `stepper`:
+/// how eq. (4b)'s sliding pieces are stepped (solvePath).
+PatchIntegral integratePatch(const BristleField& field, double tolerance, long max_work,
+                            CoulombStepper stepper = CoulombStepper::Collocation);
 
 /// Theta of the path through the spin pole, if the pole lies inside the patch.
 bool polePath(const BristleField& field, double& theta);

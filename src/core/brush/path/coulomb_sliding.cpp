@@ -1,5 +1,7 @@
 #include "coulomb_sliding.h"
+#include "coulomb_collocation.h"
 #include "rigid_sliding.h"
+#include "travel_map.h"
 
 // STL
 #include <algorithm>
@@ -16,6 +18,7 @@ constexpr int kDipSamples = 32;  // points per step at which the sliding speed's
 constexpr int kMaxSteps = 4000;      // attempted steps per piece; beyond, the path is flagged truncated
 constexpr long kStepWork = 80;       // four nodes and two 2x2 exponentials (PathIntegrals::work units)
 constexpr double kEdgeShare = 1e-2;  // of the tolerance: what the unintegrated ends of a piece may hold
+constexpr double kRigidShare = 0.2;  // of the tolerance: the rigid part's rules (their bound is cheap to tighten)
 constexpr double kMaxTurnError = 1e-2;  // rad per step, wherever the bound is: the events read the direction
 constexpr double kStiffStep = 8.0;  // W h beyond which a relaxed direction follows the slow manifold (Magnus: h < pi / W)
 constexpr double kMagnusReach = 2.0;  // W h within which the sixth-order step's error follows d^(7/5)
@@ -151,60 +154,6 @@ Vec applyExp(const Mat& O, Vec v)
   }
   return normalized({ c * v.x + k * (a * v.x + O.b * v.y), c * v.y + k * (O.c * v.x - a * v.y) });
 }
-
-// The pressure law's map from its variable s to travel tau, in which 1/f is bounded: f ~ t (simple zeros at both
-// ends of the path): tau = L / (1 + e^-s) on the real line; f ~ sqrt t: tau = L sin^2(s/2) on [0, pi]; f constant:
-// tau = s. Gives tau, L - tau (without cancellation), dtau/ds and its derivative.
-class TravelMap
-{
-public:
-  TravelMap(int m, double L) : m_(m), L_(L) {}
-
-  void at(double s, double& tau, double& rest, double& g, double& g_s) const
-  {
-    if (m_ == 2)
-    {
-      const double e = std::exp(-std::abs(s));  // tau = L / (1 + e^-s), rest = L / (1 + e^s)
-      const double small = L_ * e / (1.0 + e), large = L_ / (1.0 + e);
-      tau = s >= 0.0 ? large : small;
-      rest = s >= 0.0 ? small : large;
-      g = tau * rest / L_;
-      g_s = g * (rest - tau) / L_;
-    }
-    else if (m_ == 1)
-    {
-      const double sh = std::sin(0.5 * s), ch = std::cos(0.5 * s);
-      tau = L_ * sh * sh;
-      rest = L_ * ch * ch;
-      g = L_ * sh * ch;
-      g_s = 0.5 * (rest - tau);
-    }
-    else
-    {
-      tau = s;
-      rest = L_ - s;
-      g = 1.0;
-      g_s = 0.0;
-    }
-  }
-  double of(double tau) const
-  {
-    if (m_ == 2)
-      return std::log(tau / (L_ - tau));
-    if (m_ == 1)
-      return 2.0 * std::atan2(std::sqrt(tau), std::sqrt(std::max(0.0, L_ - tau)));
-    return tau;
-  }
-  /// s of the trailing edge (infinite for m = 2).
-  double end() const { return m_ == 2 ? INFINITY : (m_ == 1 ? M_PI : L_); }
-  /// The longest step: the map's own scale, over which f and g change by O(1), so that the steps' Gauss rule and the
-  /// error estimates beside it (Simpson's, the quartic through a step's points) see a smooth integrand.
-  double longestStep() const { return m_ == 2 ? 1.0 : (m_ == 1 ? 0.3 : 0.15 * L_); }
-
-private:
-  int m_;
-  double L_;
-};
 
 // What the law needs at one point of the path, in the map's variable s (' = d/ds).
 struct Node
@@ -393,7 +342,7 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
       end.tau = std::min(stop_tau, L);
     if (out)
     {
-      integrateRigid(*ctx, tau_a, end.tau);
+      integrateRigid(*ctx, tau_a, end.tau, kRigidShare * tol_);
       if (!end.re_adheres && end.tau >= L)
         error += 2.0 * tail;
       out->sliding += end.tau - tau_a;
@@ -779,8 +728,18 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
 SlideEnd slideCoulomb(PathContext& ctx, const SlideStart& start)
 {
   const int piece = ctx.addPiece(start.tau, ctx.path.length, false, start.direction);
+  // The stiff collocation (coulomb_collocation.h) as far as it goes; from where it stops short, the steps here.
+  SlideEnd end;
+  SlideStart rest;
+  rest = start;
+  if (ctx.stepper == CoulombStepper::Collocation && slideCollocation(ctx, start, end, rest))
+  {
+    if (piece >= 0)
+      ctx.out.piece[piece].end = end.tau;
+    return end;
+  }
   CoulombSlider slider(ctx.field, ctx.path, ctx.tolerance);
-  const SlideEnd end = slider.run(start, ctx.path.length, &ctx);
+  end = slider.run(rest, ctx.path.length, &ctx);
   if (piece >= 0)
     ctx.out.piece[piece].end = end.tau;
   return end;

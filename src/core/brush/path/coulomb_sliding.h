@@ -46,6 +46,10 @@ struct SlideEnd
 /// integrated by the same nodes, the direction there from a Hermite interpolant of v. Where the bound vanishes at
 /// the trailing edge, the part beyond where it is negligible is bounded, not integrated.
 ///
+/// With CoulombStepper::Collocation (the default) the piece is first stepped by the stiff collocation
+/// (coulomb_collocation.h), 3-5 times cheaper a step; the Magnus steps here take over only where it stops short, and
+/// are the whole solution with CoulombStepper::General (an independent check of the collocation's).
+///
 /// Adds the piece's force, moment and sliding travel to ctx.out, and a bound on its error to out.error.
 SlideEnd slideCoulomb(PathContext& ctx, const SlideStart& start);
 

@@ -6,8 +6,9 @@
 
 namespace sphere_contact_estimator::path
 {
-PathContext::PathContext(const BristleField& f, const BristlePath& p, double tol, bool k, long limit, PathIntegrals& o)
-  : field(f), path(p), tolerance(tol), keep(k), work_limit(limit), out(o), signature(o.signature)
+PathContext::PathContext(const BristleField& f, const BristlePath& p, double tol, bool k, long limit, PathIntegrals& o,
+                         CoulombStepper s)
+  : field(f), path(p), tolerance(tol), keep(k), work_limit(limit), stepper(s), out(o), signature(o.signature)
 {
   // the series of up to kMaxSegments segments (about 100 kB): built once per thread, overwritten per path
   thread_local std::array<Segment, kMaxSegments> storage;

@@ -13,13 +13,14 @@ constexpr int kMaxSegments = 64;  // per path; beyond, the path is flagged trunc
 struct PathContext
 {
   PathContext(const BristleField& field, const BristlePath& path, double tolerance, bool keep, long work_limit,
-              PathIntegrals& out);
+              PathIntegrals& out, CoulombStepper stepper = CoulombStepper::Collocation);
 
   const BristleField& field;
   const BristlePath& path;
   double tolerance;  ///< bound on the along-path quadrature error of the sliding pieces
   bool keep;         ///< record the pieces (PathIntegrals::piece) for drawing
   long work_limit;
+  CoulombStepper stepper;  ///< how eq. (4b)'s sliding pieces are stepped
   PathIntegrals& out;  // the caller's: returned in place (it holds the pieces, most of a kilobyte)
   Signature signature;
 

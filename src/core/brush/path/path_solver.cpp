@@ -124,12 +124,12 @@ void solveCoulomb(PathContext& ctx)
 }  // namespace
 
 PathIntegrals solvePath(const BristleField& field, const BristlePath& path, double tolerance, bool keep_pieces,
-                        long work_limit)
+                        long work_limit, CoulombStepper stepper)
 {
   PathIntegrals out;  // returned in place
   if (!(path.length > 0.0))
     return out;
-  PathContext ctx(field, path, tolerance, keep_pieces, work_limit, out);
+  PathContext ctx(field, path, tolerance, keep_pieces, work_limit, out, stepper);
   if (field.law == SlidingLaw::Rigid)
     solveRigid(ctx);
   else

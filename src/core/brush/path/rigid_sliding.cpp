@@ -26,7 +26,10 @@ double bernsteinRadius(double lo, double hi, cd star)
 class RigidSlider
 {
 public:
-  explicit RigidSlider(PathContext& ctx) : ctx_(ctx), f_(ctx.field), p_(ctx.path), out_(ctx.out) {}
+  RigidSlider(PathContext& ctx, double tolerance)
+    : ctx_(ctx), f_(ctx.field), p_(ctx.path), out_(ctx.out), tolerance_(tolerance)
+  {
+  }
 
   void slide(double a, double b)
   {
@@ -70,7 +73,7 @@ public:
       {
         const double half = 0.5 * (b - a), C = 64.0 / 15.0 * 8.0 * half;
         const int m = std::clamp(
-            2 + static_cast<int>(std::ceil(std::log(std::max(C / ctx_.tolerance, 1.0)) / (2.0 * std::log(rho)))), 3,
+            2 + static_cast<int>(std::ceil(std::log(std::max(C / tolerance_, 1.0)) / (2.0 * std::log(rho)))), 3,
             numerics::GaussLegendre::kMaxPoints);
         gauss(a, b, m, [&](double tau, cd& q, double& mm) { sliding(tau, q, mm); });
         out_.error += C * std::pow(rho, -2.0 * (m - 2));
@@ -193,7 +196,7 @@ private:
   template <class F>
   void graded(double a, double b, cd star, const F& g, double jacobian = 1.0)
   {
-    const double eps = ctx_.tolerance;
+    const double eps = tolerance_;
     const auto rho = [&](double lo, double hi) { return bernsteinRadius(lo, hi, star); };
     const auto apply = [&](double lo, double hi, double radius) {
       const double half = 0.5 * (hi - lo);
@@ -235,17 +238,18 @@ private:
   const BristleField& f_;
   const BristlePath& p_;
   PathIntegrals& out_;
+  double tolerance_;
 };
 }  // namespace
 
 void slideRigid(PathContext& ctx, double a, double b)
 {
-  RigidSlider(ctx).slide(a, b);
+  RigidSlider(ctx, ctx.tolerance).slide(a, b);
 }
 
-void integrateRigid(PathContext& ctx, double a, double b)
+void integrateRigid(PathContext& ctx, double a, double b, double tolerance)
 {
-  RigidSlider(ctx).integrate(a, b);
+  RigidSlider(ctx, tolerance).integrate(a, b);
 }
 
 cd rigidSlidingDeflection(const BristleField& field, const BristlePath& path, double tau)

@@ -10,9 +10,9 @@ namespace sphere_contact_estimator::path
 /// Gauss-Legendre rules graded towards the pole, whose error bound (within ctx.tolerance) is added to out.error.
 void slideRigid(PathContext& ctx, double a, double b);
 
-/// The integral of f w / |w| over [a, b] alone (force, moment and the error bound; no piece recorded): the rigid part
-/// of a Coulomb sliding piece (coulomb_sliding.h).
-void integrateRigid(PathContext& ctx, double a, double b);
+/// The integral of f w / |w| over [a, b] alone (force, moment and the error bound; no piece recorded), to `tolerance`:
+/// the rigid part of a Coulomb sliding piece (coulomb_collocation.h, coulomb_sliding.h).
+void integrateRigid(PathContext& ctx, double a, double b, double tolerance);
 
 /// The rigid law's sliding deflection f w / |w| at travel tau (a re-adhering bristle starts from it).
 cd rigidSlidingDeflection(const BristleField& field, const BristlePath& path, double tau);
