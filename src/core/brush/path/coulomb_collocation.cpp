@@ -192,6 +192,14 @@ private:
     return n;
   }
 
+  // The bound at travel tau.
+  double boundAt(double tau) const
+  {
+    if (m_ == 0)
+      return 1.0;
+    return law_.shape(straight_ ? tau * (p_.length - tau) : p_.edgeDistance(tau));
+  }
+
   Riccati riccati(const Point& p, cd e_ref) const
   {
     const cd W = p.ratio * p.w * std::conj(e_ref);
@@ -353,7 +361,7 @@ bool Collocation::run(const SlideStart& start, SlideEnd& end, SlideStart& resume
   // is taken against it (where the drive is resolved), so that the steps integrate only the small correction
   bool in_run = true;
   double run_from = start.from_rim ? 0.0 : tau_a;
-  double h = std::min(map_.longestStep(), s_end - s);
+  double h = std::min((start.from_rim ? 2.0 : 1.0) * map_.longestStep(), s_end - s);  // the rim: on the slow manifold
   bool rejected = true;  // RADAU5 filters its estimate once more on a first or rejected step
   bool done = false, re_adheres = false;
   // the last accepted step's stages, in its frame: extrapolated, the next step's guess
@@ -566,8 +574,7 @@ bool Collocation::run(const SlideStart& start, SlideEnd& end, SlideStart& resume
     const double travel = P[2].tau - p0.tau;
     const double after = std::min(std::max(L - P[2].tau, 0.0), pull > 0.0 ? P[1].g / pull : INFINITY);
     // the bound over the step and the travel after it (it peaks mid-path)
-    const double f_max = std::max({ p0.f, P[0].f, P[1].f, P[2].f,
-                                    law_.shape(p_.edgeDistance(std::clamp(0.5 * L, P[2].tau, P[2].tau + after))) });
+    const double f_max = std::max({ p0.f, P[0].f, P[1].f, P[2].f, boundAt(std::clamp(0.5 * L, P[2].tau, P[2].tau + after)) });
     double quad_err = 0.0;
     const auto overOf = [&](double e_t) {
       quad_err = quadErr(e_t);
