@@ -41,6 +41,7 @@ EstimatorSettings settingsFromConfig(const ContactEstimatorConfig& c)
   s.turn_rate_time_constant = c.turn_rate_time_constant;
   s.max_step = c.max_step;
   s.stamp_tolerance = c.stamp_tolerance;
+  s.work_budget = c.work_budget;
   s.rolling_resistance_model = checked<CylinderModelKind>("rolling_resistance_model", c.rolling_resistance_model, 4,
                                                                "rr_off or off (0), exact (1), expansion (2), table (3)");
   s.surface_stiffness = c.surface_stiffness;

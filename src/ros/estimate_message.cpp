@@ -1,6 +1,7 @@
 #include "sphere_contact_estimator/ros/estimate_message.h"
 
 // STL
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -119,6 +120,7 @@ void toMessage(const ContactEstimateData& e, ContactEstimate& m)
   m.motion_to_noise = std::isfinite(e.motion_to_noise) ? e.motion_to_noise : std::numeric_limits<double>::max();  // no inf on a topic
   m.flags = e.flags;
   m.compute_time = e.compute_time;
+  m.work = static_cast<std::uint32_t>(std::min<long>(e.work, 0xffffffffL));
 }
 
 void brushWrench(const ContactEstimateData& e, geometry_msgs::WrenchStamped& w)

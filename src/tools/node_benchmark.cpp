@@ -4,8 +4,13 @@
 // the p50/p99 latency from odometry stamp to the estimate's arrival. Then the offline replay throughput of a
 // bag by bag_analyze's own path, analyzeBag (messages per second).
 //
+// Then, with streams (a list of bags: recorded manoeuvres), each bag's odometry published at its recorded pace into the
+// node at its configured settings: every message's latency from publication to the estimate's arrival (p50, p99, max)
+// and how many were answered.
+//
 // Run by scripts/benchmark.sh beside `contact_estimator_node` (pinned to one core); prints JSON.
-// Private parameters: node (default /contact_estimator), duration per rate [s], rates (list), models (list).
+// Private parameters: node (default /contact_estimator), duration per rate [s], rates (list), models (list), streams
+// (list of bag paths; default none).
 
 // STL
 #include <algorithm>
@@ -22,6 +27,7 @@
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <rosbag/bag.h>
+#include <rosbag/view.h>
 
 // Package
 #include "sphere_contact_estimator/ContactEstimate.h"
@@ -75,6 +81,8 @@ int main(int argc, char** argv)
   pnh.getParam("rates", rates);
   std::vector<int> models{ 1, 2, 3, 4 };
   pnh.getParam("models", models);
+  std::vector<std::string> streams;
+  pnh.getParam("streams", streams);
 
   ros::AsyncSpinner spinner(1);
   spinner.start();
@@ -167,6 +175,59 @@ int main(int argc, char** argv)
     std::fflush(stdout);
   }
   std::printf("\n  ],\n");
+
+  // The recorded manoeuvres at their own pace, the node at its configured settings (restored after the models' runs)
+  {
+    sce::ContactEstimatorConfig configured = config;
+    client.getDefaultConfiguration(configured, ros::Duration(5.0));
+    std::printf("  \"streams\": [\n");
+    for (std::size_t bi = 0; bi < streams.size(); ++bi)
+    {
+      std::vector<nav_msgs::Odometry> messages;
+      {
+        rosbag::Bag bag(streams[bi]);
+        for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/odom")))
+          if (const nav_msgs::Odometry::ConstPtr o = m.instantiate<nav_msgs::Odometry>())
+            messages.push_back(*o);
+      }
+      if (messages.empty())
+        continue;
+      config.brush_model = 4;  // the default: auto
+      client.setConfiguration(config);
+      ros::WallDuration(0.3).sleep();
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        latencies.clear();
+        received = 0;
+      }
+      // a gap beyond max_step first (the node forgets the last run), then the bag's offsets from now
+      ros::WallDuration(0.6).sleep();
+      const ros::Time t0 = messages.front().header.stamp;
+      const auto start = std::chrono::steady_clock::now();
+      for (std::size_t i = 0; i < messages.size(); ++i)
+      {
+        const double offset = (messages[i].header.stamp - t0).toSec();
+        std::this_thread::sleep_until(start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                  std::chrono::duration<double>(offset)));
+        nav_msgs::Odometry o = messages[i];
+        o.header.stamp = ros::Time::now();  // the latency is measured from here
+        pub.publish(o);
+      }
+      const ros::WallTime drain = ros::WallTime::now() + ros::WallDuration(2.0);
+      while (received < messages.size() && ros::WallTime::now() < drain)
+        ros::WallDuration(0.005).sleep();
+      std::lock_guard<std::mutex> lock(mutex);
+      const double duration = (messages.back().header.stamp - t0).toSec();
+      std::printf("%s    {\"bag\": \"%s\", \"rate\": %.0f, \"sent\": %zu, \"received\": %zu, \"p50\": %.6g, \"p99\": %.6g, "
+                  "\"max\": %.6g}",
+                  bi ? ",\n" : "", streams[bi].substr(streams[bi].find_last_of('/') + 1).c_str(),
+                  duration > 0.0 ? (messages.size() - 1) / duration : 0.0, messages.size(), static_cast<std::size_t>(received),
+                  percentile(latencies, 0.5), percentile(latencies, 0.99), percentile(latencies, 1.0));
+      std::fflush(stdout);
+    }
+    std::printf("\n  ],\n");
+    config = configured;
+  }
 
   // Offline replay: a bag of the demo manoeuvre at 1 kHz through the estimator class, as fast as it goes.
   const std::string bag_path = "/tmp/sphere_contact_estimator_replay_benchmark.bag";

@@ -353,5 +353,78 @@ TEST(BrushAuto, AtStandstillAMissedTargetIsReportedAndTheFinerLatticeStartsWhenR
   EXPECT_GT(model.transientResolution(), 8);
 }
 
+TEST(BrushAuto, TheResolutionComesBackDownAndResetRestoresIt)
+{
+  // Driven hard at a tight target (the lattice grows), then rolled gently at a loose one: the estimate stays far below
+  // the target and the lattice halves again, every other bristle kept; reset() restores the configured resolution.
+  BrushParameters p = figure4Parameters();
+  p.resolution = 16;
+  p.accuracy_target = 2e-3;
+  BrushAuto model(p);
+  const double V = 1.0, dt = 0.002;
+  for (int i = 0; i < 400; ++i)
+  {
+    const double sigma_y = 0.01 * std::sin(2.0 * M_PI * V * dt * i / (1.5 * p.a));
+    model.update(ContactKinematics::fromSlips({ 0.0, sigma_y }, 0.0, 1.0, V), dt);
+  }
+  const int hard = model.transientResolution();
+  ASSERT_GT(hard, 16);
+  model.setInputSpread(1.0);  // below the noise: the target rises to a quarter of it (auto_noise_fraction)
+  BrushForces f;
+  int lowest = hard;
+  for (int i = 0; i < 600; ++i)
+  {
+    const double sigma_y = 0.002 * std::sin(2.0 * M_PI * V * dt * i / (1.5 * p.a));
+    f = model.update(ContactKinematics::fromSlips({ 0.0, sigma_y }, 0.0, 1.0, V), dt);
+    ASSERT_EQ(model.lastModel(), BrushModelKind::Transient) << "step " << i;
+    EXPECT_LE(f.error_estimate, model.lastTarget()) << "step " << i << " resolution " << model.transientResolution();
+    lowest = std::min(lowest, model.transientResolution());
+  }
+  EXPECT_LT(lowest, hard);
+  model.reset();
+  EXPECT_EQ(model.transientResolution(), 16);
+}
+
+TEST(BrushAuto, EveryUpdatesWorkStaysWithinItsBudget)
+{
+  // Random hostile histories (slips and spins over the envelope, jumps, standstill, spin in place, steps from 0.1 ms
+  // to 0.5 s) at budgets from a few steady paths to plenty: each update's counted work within the budget (but for the
+  // substep or path under way, kWorkGranularity), its estimate finite, flagged wherever it misses the target.
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int updates = 0, flagged = 0;
+  long worst_over = 0;
+  for (long budget : { 6000L, 20000L, 100000L })
+    for (int run = 0; run < 6; ++run)
+    {
+      BrushParameters p = test::drawEnvelopeParameters(rng, run);
+      p.accuracy_target = std::pow(10.0, -1.0 - 2.0 * u(rng));
+      BrushAuto model(p);
+      for (int i = 0; i < 120; ++i)
+      {
+        ContactKinematics k;
+        const double V = u(rng) < 0.15 ? 0.0 : 2.0 * u(rng);
+        k.V_r = Eigen::Vector2d(V, 0.0);
+        k.V_s = Eigen::Vector2d(0.5 * (2.0 * u(rng) - 1.0), 0.5 * (2.0 * u(rng) - 1.0)) * std::max(V, 0.1);
+        k.omega_z = 20.0 * (2.0 * u(rng) - 1.0);
+        k.psi_dot = p.tilt ? 0.3 * k.omega_z : k.omega_z;
+        const double dt = std::pow(10.0, -4.0 + 3.7 * u(rng));
+        model.setWorkBudget(budget);
+        const BrushForces f = model.update(k, dt);
+        ++updates;
+        worst_over = std::max(worst_over, f.work - budget);
+        EXPECT_LE(f.work, budget + BrushModel::kWorkGranularity) << "budget " << budget << " run " << run << " step " << i;
+        EXPECT_TRUE(std::isfinite(f.error_estimate));
+        if (f.error_estimate > model.lastTarget())
+        {
+          EXPECT_TRUE(f.flags & brush_flags::kAccuracyNotMet);
+          ++flagged;
+        }
+      }
+    }
+  std::printf("work budget: %d updates, %d flagged (the target missed within the budget), largest overrun %ld\n", updates,
+              flagged, worst_over);
+}
+
 }  // namespace
 }  // namespace sphere_contact_estimator

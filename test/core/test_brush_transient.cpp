@@ -568,5 +568,46 @@ TEST(BrushTransient, BadStepsAreRejected)
   EXPECT_TRUE(std::isfinite(f.F_x));
 }
 
+TEST(BrushTransient, CoarseningKeepsEveryOtherBristle)
+{
+  // Rolling at Fig. 4's inputs at resolution 32, then halved: the bristles of the coarser lattice are the finer one's at
+  // the same places, with the same deflections; its forces are within both estimates of the finer ones and move on
+  // continuously as it rolls.
+  BrushParameters p = test::figure4Parameters(false, 32);
+  BrushTransient fine(p);
+  const ContactKinematics k = ContactKinematics::fromSlips({ 0.05, 0.02 }, 3.33, 1.0, 1.0);
+  for (int i = 0; i < 30; ++i)
+    fine.update(k, 0.005);
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> before;
+  fine.forEachBristle([&](const Eigen::Vector2d& x, const Eigen::Vector2d& u, bool) { before.emplace_back(x, u); });
+  const BrushForces f = fine.forces();
+  BrushTransient coarse = fine;
+  ASSERT_TRUE(coarse.coarsen());
+  EXPECT_EQ(coarse.lastResolution(), 16);
+  EXPECT_NEAR(coarse.spacing(), 2.0 * fine.spacing(), 1e-15);
+  int kept = 0;
+  coarse.forEachBristle([&](const Eigen::Vector2d& x, const Eigen::Vector2d& u, bool) {
+    for (const auto& [y, v] : before)
+      if ((x - y).norm() < 1e-12)
+      {
+        EXPECT_EQ(u, v);
+        ++kept;
+        return;
+      }
+    ADD_FAILURE() << "a coarse bristle at " << x.transpose() << " is none of the fine ones";
+  });
+  EXPECT_GT(kept, 150);  // about a quarter of the fine lattice's ~800
+  const BrushForces g = coarse.forces();
+  const double scale = p.mu * p.F_z;
+  EXPECT_LE(std::abs(g.F_x - f.F_x) / scale, f.error_estimate + g.error_estimate);
+  EXPECT_LE(std::abs(g.F_y - f.F_y) / scale, f.error_estimate + g.error_estimate);
+  const BrushForces next = coarse.update(k, 0.001);
+  EXPECT_LE(std::abs(next.F_y - g.F_y) / scale, 0.02);
+  // down to kMinCoarsened, no further
+  while (coarse.coarsen())
+    ;
+  EXPECT_EQ(coarse.lastResolution(), BrushTransient::kMinCoarsened);
+}
+
 }  // namespace
 }  // namespace sphere_contact_estimator

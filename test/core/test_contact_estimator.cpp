@@ -393,6 +393,51 @@ TEST(ContactEstimator, ConfigureKeepsOrRejects)
 
 // The one place the paper/ROS sign flips live: an involution, and the paper's V_r = (-omega_y, omega_x) R_r is
 // REP 103's (omega_y R_r, -omega_x R_r) seen in the paper frame (docs/conventions.md).
+TEST(ContactEstimator, TheWorkBudgetBoundsEveryMessage)
+{
+  // Random hostile streams through the default estimator (auto, the twist's covariance propagated): speeds from
+  // standstill to 3 m/s, slips and spins that jump, stamps that jitter, stall and leap; at budgets from the smallest to
+  // plenty. Every message's counted work (the covariance's sigma points and the brush model) stays within the budget;
+  // every miss of the target is flagged; nothing is lost to a NaN.
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int messages = 0, flagged = 0, jacobian = 0;
+  for (long budget : { EstimatorSettings::kMinWorkBudget, 40000L, EstimatorSettings::kDefaultWorkBudget })
+    for (int run = 0; run < 4; ++run)
+    {
+      EstimatorSettings s;
+      s.work_budget = budget;
+      s.accuracy_target = std::pow(10.0, -1.0 - 2.0 * u(rng));
+      s.tilt = run % 2;
+      ContactEstimator e(s);
+      double t = 0.0, yaw = 0.0;
+      for (int i = 0; i < 150; ++i)
+      {
+        t += u(rng) < 0.05 ? 0.3 * u(rng) : 0.001 + 0.02 * u(rng);
+        const double v = u(rng) < 0.1 ? 0.01 * u(rng) : 3.0 * u(rng);
+        yaw += 0.2 * (2.0 * u(rng) - 1.0);
+        EstimatorInput in = rolling(t, v, yaw, 0.3 * v * (2.0 * u(rng) - 1.0), 0.2 * v * (2.0 * u(rng) - 1.0),
+                                    15.0 * (2.0 * u(rng) - 1.0));
+        in.twist_covariance = TwistCovariance::Identity() * std::pow(10.0, -6.0 + 4.0 * u(rng));
+        in.twist_covariance(2, 2) = 0.0;
+        const ContactEstimateData* d = e.update(in);
+        ASSERT_NE(d, nullptr);
+        ++messages;
+        EXPECT_LE(d->work, budget) << "budget " << budget << " run " << run << " message " << i;
+        EXPECT_TRUE(std::isfinite(d->brush.F_x) && std::isfinite(d->brush.F_y) && std::isfinite(d->brush.M_z));
+        EXPECT_TRUE(std::isfinite(d->brush.error_estimate));
+        if (d->brush.error_estimate > d->brush_target)
+        {
+          EXPECT_TRUE(d->brush.flags & brush_flags::kAccuracyNotMet) << "message " << i;
+          ++flagged;
+        }
+        jacobian += d->covariance.brush_method == CovarianceMethod::Jacobian;
+      }
+    }
+  std::printf("work budget: %d messages, %d flagged, %d with the linear Jacobian for the covariance\n", messages,
+              flagged, jacobian);
+}
+
 TEST(PaperFrame, FlipsAreOneInvolutionThatMatchesTheRollingVelocity)
 {
   std::mt19937 rng(3);

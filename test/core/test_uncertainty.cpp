@@ -328,6 +328,8 @@ EstimatorSettings steadySettings(BrushModelKind kind)
   s.brush_model = kind;
   s.accuracy_target = 1e-4;
   s.rolling_resistance_model = CylinderModelKind::Exact;
+  // the transform's accuracy is under test, not the work budget (WorkBudget.* test that): all the work it takes
+  s.work_budget = EstimatorSettings::kMaxWorkBudget;
   return s;
 }
 

@@ -353,7 +353,9 @@ TEST_F(EstimatorIo, TwistCovarianceReachesTheEstimateAndBadOnesAreDiagnosed)
   std::lock_guard<std::mutex> lock(mutex_);
   const sce::ContactEstimate* good = estimateAt(ros::Time(g_clock));
   ASSERT_NE(good, nullptr);
-  EXPECT_EQ(good->covariance_status, sce::ContactEstimate::COVARIANCE_OK);
+  // (approximate where the work budget took the linear model's Jacobian instead of the sigma points)
+  EXPECT_TRUE(good->covariance_status == sce::ContactEstimate::COVARIANCE_OK ||
+              good->covariance_status == sce::ContactEstimate::COVARIANCE_APPROXIMATE);
   EXPECT_NE(good->brush_covariance_method, sce::ContactEstimate::COVARIANCE_METHOD_NONE);
   for (int i : { 0, 4, 8 })
     EXPECT_GT(good->brush_covariance[i], 0.0) << i;

@@ -49,6 +49,7 @@ TEST(Parameters, CfgDefaultsAreTheCoreDefaults)
   SAME(turn_rate_time_constant);
   SAME(max_step);
   SAME(stamp_tolerance);
+  SAME(work_budget);
   SAME(rolling_resistance_model);
   SAME(surface_stiffness);
   SAME(surface_damping);

@@ -40,7 +40,7 @@ double longestPath(const BrushParameters& p)
 BrushAuto::BrushAuto(const BrushParameters& parameters)
   : BrushModel(parameters), linear_(parameters), steady_(parameters), lag_(2.0 * parameters.a)
 {
-  transient_resolution_ = std::min(p_.resolution, kMaxTransientResolution);
+  transient_resolution_ = configured_resolution_ = std::min(p_.resolution, kMaxTransientResolution);
   transient_ = std::make_unique<BrushTransient>(withResolution(p_, transient_resolution_));
 }
 
@@ -66,6 +66,13 @@ double BrushAuto::effectiveTarget() const
 
 void BrushAuto::reset()
 {
+  if (transient_resolution_ != configured_resolution_)
+  {
+    transient_resolution_ = configured_resolution_;
+    transient_->setParameters(withResolution(p_, transient_resolution_));
+  }
+  pending_resolution_ = 0;
+  easy_travel_ = 0.0;
   transient_->reset();
   finer_.reset();
   in_transient_ = false;
@@ -117,7 +124,10 @@ void BrushAuto::stepLag(const Slips& s, const Eigen::Vector2d& sigma, const Roll
   else
   {
     BrushSteady::Stats stats;
-    steady_cache_ = steady_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi, 0.25 * target, &stats);
+    // (at most half of what is left: the answer's model needs the rest)
+    steady_cache_ = steady_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi, 0.25 * target, &stats,
+                                     std::min(BrushSteady::kMaxWork, remaining() / 2));
+    spent_ += stats.work;
     cost_ += kSteadyPathCost * stats.paths;
     steady_cached_ = true;
     slip = toPatch(steady_cache_.F_x, steady_cache_.F_y, steady_cache_.M_z);
@@ -138,6 +148,7 @@ BrushForces BrushAuto::steadyFamily(const Slips& s, const Eigen::Vector2d& sigma
   {
     model = BrushModelKind::Linear;
     cost_ += kLinearCost;
+    spent_ += BrushLinear::kWork;
     BrushForces f = linear_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi);
     f.error_estimate = std::max(f.error_estimate, bound);
     return f;
@@ -146,38 +157,76 @@ BrushForces BrushAuto::steadyFamily(const Slips& s, const Eigen::Vector2d& sigma
   if (steady_cached_ && steady_cache_.error_estimate <= budget)
     return steady_cache_;  // evaluated for the lag, to a quarter of the target
   BrushSteady::Stats stats;
-  const BrushForces f = steady_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi, budget, &stats);
+  BrushForces f = steady_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi, budget, &stats,
+                                   std::min(BrushSteady::kMaxWork, remaining()));
+  spent_ += stats.work;
   cost_ += kSteadyPathCost * stats.paths;
+  // the work budget spent before the target: the linear answer where its bound is the smaller
+  const double linear_bound = std::max(linear_bound_, lag_.largestHeld());
+  if ((f.flags & brush_flags::kAccuracyNotMet) && linear_bound < f.error_estimate)
+  {
+    model = BrushModelKind::Linear;
+    spent_ += BrushLinear::kWork;
+    f = linear_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi);
+    f.error_estimate = std::max(f.error_estimate, linear_bound);
+  }
   return f;
 }
 
-void BrushAuto::enterTransient()
+void BrushAuto::enterTransient(const ContactKinematics& kin, double dt)
 {
   // Warm start: the bristles in the steady state of the last rolling inputs before this step (2.5 transits), so
   // the transient model takes over where the steady one was and then rolls this step under the new inputs; at
-  // the finer resolution asked for last time.
-  if (pending_resolution_ > transient_resolution_)
+  // the finer resolution asked for last time, or the finest whose warm start and step fit the work budget.
+  int resolution = std::max(transient_resolution_, pending_resolution_);
+  pending_resolution_ = 0;
+  const double V = have_rolling_ ? last_rolling_.V_r.norm() : 0.0;
+  const double warm = have_rolling_ ? 2.5 * longestPath(p_) / V : 0.0;
+  if (resolution != transient_resolution_)
+    transient_->setParameters(withResolution(p_, resolution));
+  // the cost of a lattice grows as its resolution cubed (points times substeps)
+  while (resolution / 2 >= BrushTransient::kMinCoarsened &&
+         (have_rolling_ ? transient_->predictWork(last_rolling_, warm) : 0) + transient_->predictWork(kin, dt) > remaining())
   {
-    transient_resolution_ = pending_resolution_;
-    transient_->setParameters(withResolution(p_, transient_resolution_));
+    resolution /= 2;
+    transient_->setParameters(withResolution(p_, resolution));  // rare: it allocates
   }
+  transient_resolution_ = resolution;
   transient_->reset();
-  if (have_rolling_)
-  {
-    const double V = last_rolling_.V_r.norm();
-    transient_->update(last_rolling_, 2.5 * longestPath(p_) / V);
-    cost_ += transientStepCost(transient_resolution_) * std::ceil(5.0 * transient_resolution_);
-  }
+  easy_travel_ = 0.0;
   in_transient_ = true;
   steady_distance_ = 0.0;
   // the warm start is the steady state of the last inputs, which the true state lagged by at most the lag then
   // (the steady family's answer accepted it); only renewed bristles forget that
   entry_error_ = last_lag_;
+  if (have_rolling_)
+  {
+    // Even the coarsest lattice may not roll 2.5 transits within the budget: then as far as it can, and the bristles it
+    // did not reach (their share of the patch: those that did not enter during the roll) may miss all of their
+    // force, which the entry error carries until they renew.
+    double roll = warm;
+    const long whole = transient_->predictWork(last_rolling_, warm), step = transient_->predictWork(kin, dt);
+    const long rounding = 2 * transient_->predictWork(last_rolling_, 0.0);  // a substep and the sums, rounded up
+    if (whole + step > remaining() && whole > 0)
+    {
+      roll = warm * std::max(0.0, static_cast<double>(remaining() - step - rounding) / static_cast<double>(whole));
+      const double reached = std::min(1.0, V * roll / longestPath(p_));
+      entry_error_ += 1.0 - reached;
+    }
+    if (roll > 0.0)
+    {
+      // the lattice's steps only: the rows' correction is evaluated at the step that answers
+      transient_->setWorkBudget(transient_->predictWork(last_rolling_, roll));
+      spent_ += transient_->update(last_rolling_, roll).work;
+    }
+    cost_ += transientStepCost(transient_resolution_) * std::ceil(5.0 * transient_resolution_);
+  }
 }
 
 BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
 {
   checkInput(kin, dt);
+  spent_ = 0;
   const Slips s = computeSlips(kin, p_.standstill_speed);
   last_slips_ = s;
   const double target = target_ = effectiveTarget();
@@ -211,6 +260,7 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
   last_model_ = model;
   last_resolution_ = resolution;
   answered_ = true;
+  out.work = spent_;
   return out;
 }
 
@@ -261,7 +311,7 @@ void BrushAuto::chooseFamily(const ContactKinematics& kin, const Slips& s, doubl
   else if (in_transient_)
     steady_distance_ = 0.0;
   else if (!check.steady)
-    enterTransient();  // from the state before this step
+    enterTransient(kin, dt);  // from the state before this step
   if (s.defined)
   {
     last_rolling_ = kin;
@@ -273,7 +323,16 @@ void BrushAuto::chooseFamily(const ContactKinematics& kin, const Slips& s, doubl
 BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips& s, double dt, double target,
                                        int& resolution)
 {
+  // a lattice whose step does not fit what is left of the budget: every other bristle, until it does
+  while (transient_->predictWork(kin, dt) > remaining() && transient_->coarsen())
+  {
+    transient_resolution_ /= 2;
+    finer_.reset();
+    easy_travel_ = 0.0;
+  }
+  transient_->setWorkBudget(remaining());
   BrushForces out = transient_->update(kin, dt);
+  spent_ += out.work;
   entry_error_ *= lag_.memory(s.V_r * dt / (0.5 * longestPath(p_) / p_.a));  // the slowest renewal
   out.error_estimate += entry_error_;
   resolution = transient_resolution_;
@@ -285,9 +344,12 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
   // 7 % of mu F_z a transit later on random histories. At standstill nothing renews a state: the finer lattice
   // waits for the next entry into the transient model, and the estimate meanwhile says that the target is
   // missed.
+  if (finer_ && finer_->predictWork(kin, dt) > remaining())
+    finer_.reset();  // the budget no longer carries both lattices
   if (finer_)
   {
-    finer_->update(kin, dt);
+    finer_->setWorkBudget(remaining());
+    spent_ += finer_->update(kin, dt).work;
     cost_ += transientStepCost(2 * resolution) * std::max(1.0, std::ceil(s.V_r * dt / (p_.a / (2 * resolution))));
     finer_travel_ += s.V_r * dt;
     if (finer_travel_ >= longestPath(p_))
@@ -308,16 +370,31 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
            transient_resolution_ < kMaxTransientResolution)
   {
     const int finer = std::min(2 * transient_resolution_, kMaxTransientResolution);
-    if (s.defined)
+    // A lattice twice as fine costs about eight times as much a step (points times substeps), which must fit what is
+    // left of the budget. It needs no warm start: it starts empty and answers only once it has rolled the longest
+    // path, when every bristle on it entered under the inputs it followed.
+    const bool affordable = 8 * transient_->predictWork(kin, dt) <= remaining();
+    if (s.defined && affordable)
     {
       finer_ = std::make_unique<BrushTransient>(withResolution(p_, finer));  // rare: it allocates
-      finer_->update(kin, 2.5 * longestPath(p_) / s.V_r);
-      cost_ += transientStepCost(finer) * std::ceil(5.0 * finer);
       finer_travel_ = 0.0;
     }
-    else
+    else if (!s.defined)
       pending_resolution_ = finer;
   }
+  // Both ways: an estimate that stays below an eighth of the target while the longest path rolls says that a lattice of
+  // half the resolution (second order: about four times as far off) would still meet it.
+  if (!finer_ && out.error_estimate <= 0.125 * target && transient_resolution_ > configured_resolution_ / 4)
+  {
+    easy_travel_ += s.defined ? s.V_r * dt : 0.0;
+    if (easy_travel_ >= longestPath(p_) && transient_->coarsen())
+    {
+      transient_resolution_ /= 2;
+      easy_travel_ = 0.0;
+    }
+  }
+  else
+    easy_travel_ = 0.0;
   return out;
 }
 
@@ -338,9 +415,19 @@ void BrushAuto::carryAcrossSwitches(BrushForces& out, const Slips& s, const Eige
       previous = linear_.evaluate(sigma, s.phi);
       frame.forcesToPatch(previous);
     }
+    else if (s.defined && before == BrushModelKind::Steady && steady_cached_)
+    {
+      previous = steady_cache_;  // evaluated for the lag at these inputs
+      frame.forcesToPatch(previous);
+    }
+    else if (s.defined && before == BrushModelKind::Steady && remaining() < kMinSwitchWork)
+      previous = out;  // nothing left of the budget to evaluate the model switched from: no carried difference
     else if (s.defined && before == BrushModelKind::Steady)
     {
-      previous = steady_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi, std::max(0.5 * target, 1e-6));
+      BrushSteady::Stats stats;
+      previous = steady_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi, std::max(0.5 * target, 1e-6), &stats,
+                                  std::min(BrushSteady::kMaxWork, remaining()));
+      spent_ += stats.work;
       frame.forcesToPatch(previous);
     }
     offset_.F_x += previous.F_x - out.F_x;

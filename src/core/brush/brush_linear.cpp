@@ -46,6 +46,7 @@ BrushForces BrushLinear::evaluate(const Eigen::Vector2d& sigma, double phi) cons
   }
   f.F_x = F.x();
   f.F_y = F.y();
+  f.work = kWork;
   return f;
 }
 

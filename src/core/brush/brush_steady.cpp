@@ -1,6 +1,7 @@
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
 
 // STL
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -25,7 +26,7 @@ BrushSteady::BrushSteady(const BrushParameters& parameters) : BrushSlipModel(par
 
 BrushForces BrushSteady::evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi) const
 {
-  return solve(sigma, phi, phi_gamma, phi_psi, p_.accuracy_target, nullptr);
+  return solve(sigma, phi, phi_gamma, phi_psi, p_.accuracy_target, nullptr, nullptr, std::min(kMaxWork, work_budget_));
 }
 
 BrushForces BrushSteady::evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi,
@@ -68,12 +69,14 @@ BrushForces BrushSteady::solve(const Eigen::Vector2d& sigma, double phi, double 
     return out;  // mu F_z = 0: no force, exactly
   const double c = peakFactor(p_.pressure);
   const double scale = c / pi;  // dimensionless integrals -> fractions of mu F_z
-  PatchIntegral I = integratePatch(f, tolerance / scale, max_work, stepper);
-  if (!I.converged && I.error > 100.0 * tolerance / scale && tolerance < 1e-2)
+  // two thirds of the budget for the tolerance asked; if that runs out before the structure was even located (a
+  // tolerance far tighter than the point allows, or a small budget), a looser one in the rest gives the best answer
+  // the budget can: the work stays within it (but for the path under way when it ran out)
+  const long first = tolerance < 1e-2 ? max_work - max_work / 3 : max_work;
+  PatchIntegral I = integratePatch(f, tolerance / scale, first, stepper);
+  if (!I.converged && I.error > 100.0 * tolerance / scale && tolerance < 1e-2 && max_work - I.work > 0)
   {
-    // the budget ran out before the structure was even located (a tolerance far tighter than the point allows):
-    // a looser one within half the budget again gives the best answer this budget can
-    const PatchIntegral looser = integratePatch(f, 100.0 * tolerance / scale, max_work / 2, stepper);
+    const PatchIntegral looser = integratePatch(f, 100.0 * tolerance / scale, max_work - I.work, stepper);
     if (looser.error < I.error)
     {
       const long work = I.work;
@@ -87,6 +90,7 @@ BrushForces BrushSteady::solve(const Eigen::Vector2d& sigma, double phi, double 
     stats->paths = I.paths;
     stats->work = I.work;
   }
+  out.work = I.work;
   const double muFz = p_.mu * p_.F_z;
   out.F_x = muFz * scale * I.force.real();
   out.F_y = muFz * scale * I.force.imag();

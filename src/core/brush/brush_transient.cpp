@@ -171,6 +171,60 @@ void BrushTransient::allocate()
   reset();
 }
 
+bool BrushTransient::coarsen()
+{
+  const int n = p_.resolution;
+  if (n % 2 != 0 || n / 2 < kMinCoarsened)
+    return false;
+  // the fine state into the scratch arrays (sized for the fine window), then the coarse window over it: coarse point
+  // (i, j) is fine point (2 i - 2, 2 j - 2) when the pose moves by half a fine spacing along both lattice axes
+  // (fine points lie at (I - c0) h, c0 = (n + 5) / 2; coarse ones at (i - c0') 2h + h / 2, c0' = (n / 2 + 5) / 2)
+  const int w_fine = w_;
+  std::copy(u_.begin(), u_.end(), u_scratch_.begin());
+  std::copy(jump_.begin(), jump_.end(), jump_scratch_.begin());
+  std::copy(inside_.begin(), inside_.end(), inside_scratch_.begin());
+  std::copy(sliding_.begin(), sliding_.end(), sliding_scratch_.begin());
+  std::copy(slip_travel_.begin(), slip_travel_.end(), slip_travel_scratch_.begin());
+  std::copy(step_error_.begin(), step_error_.end(), step_error_scratch_.begin());
+  o_ += R_ * Eigen::Vector2d(0.5 * h_, 0.5 * h_);
+  p_.resolution = n / 2;
+  h_ = 2.0 * p_.a / p_.resolution;
+  w_ = p_.resolution + 6;
+  c0_ = 0.5 * (w_ - 1);
+  const std::size_t size = static_cast<std::size_t>(w_) * w_;
+  for (auto* v : { &u_, &jump_ })
+    v->resize(size);
+  for (auto* v : { &inside_, &sliding_ })
+    v->resize(size);
+  for (auto* v : { &slip_travel_, &step_error_ })
+    v->resize(size);
+  for (int j = 0; j < w_; ++j)
+    for (int i = 0; i < w_; ++i)
+    {
+      const std::size_t p = index(i, j);
+      const int I = 2 * i - 2, J = 2 * j - 2;
+      const bool kept = I >= 0 && J >= 0 && I < w_fine && J < w_fine;
+      const std::size_t q = kept ? static_cast<std::size_t>(J) * w_fine + I : 0;
+      u_[p] = kept ? u_scratch_[q] : Eigen::Vector2d::Zero();
+      jump_[p] = kept ? jump_scratch_[q] : Eigen::Vector2d::Zero();
+      inside_[p] = kept ? inside_scratch_[q] : 0;
+      sliding_[p] = kept ? sliding_scratch_[q] : 0;
+      slip_travel_[p] = kept ? slip_travel_scratch_[q] : INFINITY;
+      step_error_[p] = kept ? step_error_scratch_[q] : 0.0;
+    }
+  // the scratch arrays the same size again (recentre swaps them in); shrinking keeps their storage
+  for (auto* v : { &u_scratch_, &jump_scratch_ })
+    v->resize(size);
+  for (auto* v : { &inside_scratch_, &sliding_scratch_ })
+    v->resize(size);
+  for (auto* v : { &slip_travel_scratch_, &step_error_scratch_ })
+    v->resize(size);
+  rows_phi_ = NAN;  // the rows moved: the control variate is evaluated again
+  rows_active_ = false;
+  recentre();
+  return true;
+}
+
 void BrushTransient::reset()
 {
   R_.setIdentity();
@@ -196,27 +250,28 @@ void BrushTransient::reset()
 BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
 {
   checkInput(kin, dt);
+  work_ = 0;
   BrushForces f;
+  bool short_of_work = false;
   if (dt > 0.0)
   {
-    const double omega_gamma = p_.tilt ? kin.omegaGamma() : 0.0;
-    double travel = (kin.V_r.norm() + std::abs(omega_gamma) * (p_.a + h_)) * dt;
-    // Under eq. (4b) the step is also one of time: the tips' motion (the drive, V_s + A_omega x) is resolved as the
-    // roots' (at standstill with spin it is the only motion, and one step per message left a first-order error at
-    // the bound's scale)
-    if (p_.sliding_law == SlidingLaw::Coulomb)
-      travel = std::max(travel, (kin.V_s.norm() + std::abs(kin.omega_z) * (p_.a + h_)) * dt);
-    double angle = std::abs(omega_gamma) * dt;
-    if (p_.tilt)
-      angle = std::max(angle, std::abs(kin.psi_dot) * dt);
-    const double wanted = std::ceil(std::max({ 1.0, travel / (0.5 * h_), angle / kMaxAngle }));
-    int n = kMaxSubsteps;
-    if (wanted <= kMaxSubsteps)
-      n = static_cast<int>(wanted);
-    else
+    const int n = substeps(kin, dt);
+    if (n < 0)
       f.flags |= brush_flags::kSubstepsTruncated;
-    for (int s = 0; s < n; ++s)
-      substep(kin, dt / n);
+    int count = n < 0 ? kMaxSubsteps : n;
+    // fewer substeps than accuracy wants where the work budget cannot pay for them (auto, at its coarsest lattice): the
+    // answer then makes no claim beyond the friction circle's
+    const long point_work = static_cast<long>(w_) * w_ * kPointWork;
+    const long affordable = work_budget_ / point_work - 1;  // the sums after the substeps take one more
+    if (count > affordable)
+    {
+      count = static_cast<int>(std::max(1L, affordable));
+      short_of_work = true;
+      f.flags |= brush_flags::kSubstepsTruncated;
+    }
+    for (int s = 0; s < count; ++s)
+      substep(kin, dt / count);
+    work_ += static_cast<long>(count) * w_ * w_ * kPointWork;
   }
   const bool held = have_last_kin_ && sameInputs(kin, last_kin_);
   const double travel = kin.V_r.norm() * std::max(dt, 0.0);
@@ -237,8 +292,33 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   f.M_z = g.M_z;
   f.sliding_fraction = g.sliding_fraction;
   f.max_utilisation = g.max_utilisation;
-  f.error_estimate = g.error_estimate;
+  f.error_estimate = g.error_estimate + (short_of_work ? 2.0 : 0.0);
+  work_ += static_cast<long>(w_) * w_ * kPointWork;  // the sums over the lattice and its sub-lattices
+  f.work = work_;
   return f;
+}
+
+int BrushTransient::substeps(const ContactKinematics& kin, double dt) const
+{
+  // each bristle's path within half a lattice spacing, every rotation below kMaxAngle; -1 beyond kMaxSubsteps
+  const double omega_gamma = p_.tilt ? kin.omegaGamma() : 0.0;
+  double travel = (kin.V_r.norm() + std::abs(omega_gamma) * (p_.a + h_)) * dt;
+  // Under eq. (4b) the step is also one of time: the tips' motion (the drive, V_s + A_omega x) is resolved as the
+  // roots' (at standstill with spin it is the only motion, and one step per message left a first-order error at the
+  // bound's scale)
+  if (p_.sliding_law == SlidingLaw::Coulomb)
+    travel = std::max(travel, (kin.V_s.norm() + std::abs(kin.omega_z) * (p_.a + h_)) * dt);
+  double angle = std::abs(omega_gamma) * dt;
+  if (p_.tilt)
+    angle = std::max(angle, std::abs(kin.psi_dot) * dt);
+  const double wanted = std::ceil(std::max({ 1.0, travel / (0.5 * h_), angle / kMaxAngle }));
+  return wanted <= kMaxSubsteps ? static_cast<int>(wanted) : -1;
+}
+
+long BrushTransient::predictWork(const ContactKinematics& kin, double dt) const
+{
+  const int n = dt > 0.0 ? substeps(kin, dt) : 0;
+  return (static_cast<long>(n < 0 ? kMaxSubsteps : n) + 1) * w_ * w_ * kPointWork;
 }
 
 void BrushTransient::substep(const ContactKinematics& kin, double dt)
@@ -461,7 +541,20 @@ void BrushTransient::correctRows(const ContactKinematics& kin, bool held, double
     // a twentieth of the lattice's error scale (about 1 / n^2 of mu F_z at resolution n, docs/benchmarks.md)
     const double scale = peakFactor(p_.pressure) / boost::math::double_constants::pi;  // -> fractions of mu F_z
     const double tolerance = 0.05 / (static_cast<double>(p_.resolution) * p_.resolution);
-    rows_ = evaluateSteadyRows(field, y_first, spacing, w_, tolerance / scale, BrushSteady::kMaxWork);
+    // within what the work budget leaves after the lattice's own steps (its estimate carries what it could not meet)
+    const long left = work_budget_ - work_ - static_cast<long>(w_) * w_ * kPointWork;
+    if (left < kMinRowsWork * w_)
+    {
+      rows_phi_ = NAN;  // not even a row each: no correction this time (the streaks' bound says what is missed)
+      return;
+    }
+    rows_ = evaluateSteadyRows(field, y_first, spacing, w_, tolerance / scale, std::min(BrushSteady::kMaxWork, left));
+    work_ += rows_.work;
+    if (!rows_.complete)
+    {
+      rows_phi_ = NAN;  // the budget could not buy every row: no correction (the streaks' bound says what is missed)
+      return;
+    }
     rows_sigma_ = sigma;
     rows_phi_ = s.phi;
     rows_params_ = p_;

@@ -59,13 +59,13 @@ Eigen::Matrix<double, 3, 4> linearJacobian(const BrushLinear& model, const Eigen
 
 template <int N>
 ForceCovariance propagate(BrushModelKind kind, const BrushParameters& p, const Eigen::Vector2d& sigma, double phi,
-                          double chi_gamma, const Eigen::Matrix<double, N, N>& Sigma);
+                          double chi_gamma, const Eigen::Matrix<double, N, N>& Sigma, long max_work);
 
 // The rolling direction's turn psi matters only through what is not isotropic in the slips (the spin's term, the
 // adhesion zone's shape): where the linear model says that its share of the forces' variance is below 1 %, the
 // slips alone are transformed (6 sigma points instead of 8).
 ForceCovariance propagateWithTurn(BrushModelKind kind, const BrushParameters& p, const Eigen::Vector2d& sigma,
-                                  double phi, double chi_gamma, const Eigen::Matrix4d& Sigma)
+                                  double phi, double chi_gamma, const Eigen::Matrix4d& Sigma, long max_work)
 {
   if (kind != BrushModelKind::Linear && covarianceProblem<4>(Sigma) == nullptr)
   {
@@ -73,14 +73,14 @@ ForceCovariance propagateWithTurn(BrushModelKind kind, const BrushParameters& p,
     const Eigen::Vector3d turn = J.col(3).cwiseAbs2() * Sigma(3, 3);
     const Eigen::Vector3d all = (J * Sigma * J.transpose()).diagonal();
     if ((turn.array() <= 0.01 * all.array()).all())
-      return propagate<3>(kind, p, sigma, phi, chi_gamma, Eigen::Matrix3d(Sigma.topLeftCorner<3, 3>()));
+      return propagate<3>(kind, p, sigma, phi, chi_gamma, Eigen::Matrix3d(Sigma.topLeftCorner<3, 3>()), max_work);
   }
-  return propagate<4>(kind, p, sigma, phi, chi_gamma, Sigma);
+  return propagate<4>(kind, p, sigma, phi, chi_gamma, Sigma, max_work);
 }
 
 template <int N>
 ForceCovariance propagate(BrushModelKind kind, const BrushParameters& p, const Eigen::Vector2d& sigma, double phi,
-                          double chi_gamma, const Eigen::Matrix<double, N, N>& Sigma)
+                          double chi_gamma, const Eigen::Matrix<double, N, N>& Sigma, long max_work)
 {
   if (const char* problem = covarianceProblem<N>(Sigma))
     throw std::invalid_argument(std::string("slip covariance: ") + problem);
@@ -104,6 +104,12 @@ ForceCovariance propagate(BrushModelKind kind, const BrushParameters& p, const E
   // spread, then, where saturation made the spread far smaller, again of the spread the first pass found.
   const BrushSteady steady(p);
   bool exists = true;
+  // the budget shared by the sigma points (2N + 1 of them; a second pass only in what the first left): an evaluation
+  // stopped by its share flags the transform, which then gives way to the linear model's Jacobian
+  const long points = 2 * N + 1;
+  long share = max_work / points;
+  bool short_of_work = false;
+  long work = 0;
   Eigen::Matrix<double, N, 1> mean = Eigen::Matrix<double, N, 1>::Zero();
   mean.template head<3>() << sigma.x(), sigma.y(), phi;
   const auto transform = [&](double tolerance) {
@@ -111,8 +117,14 @@ ForceCovariance propagate(BrushModelKind kind, const BrushParameters& p, const E
         mean, Sigma,
         [&](const Eigen::Matrix<double, N, 1>& x) {
           const double psi = N > 3 ? x(N - 1) : 0.0;
+          if (short_of_work)
+            return Eigen::Vector3d::Zero().eval();  // the transform gives way to the Jacobian: nothing more spent
           const Eigen::Vector2d s = rotation(-psi) * Eigen::Vector2d(x(0), x(1));
-          const BrushForces f = steady.evaluate(s, x(2), chi_gamma * x(2), (1.0 - chi_gamma) * x(2), tolerance);
+          BrushSteady::Stats stats;
+          const BrushForces f = steady.evaluate(s, x(2), chi_gamma * x(2), (1.0 - chi_gamma) * x(2), tolerance, &stats,
+                                                std::min(BrushSteady::kMaxWork, std::max(share, 1L)));
+          work += stats.work;
+          short_of_work = short_of_work || ((f.flags & brush_flags::kAccuracyNotMet) && 2 * stats.work >= share);
           exists = exists && !(f.flags & brush_flags::kNoSteadyStateTilt);
           const Eigen::Vector2d F = rotation(psi) * Eigen::Vector2d(f.F_x, f.F_y);
           return Eigen::Vector3d(F.x(), F.y(), f.M_z);
@@ -129,7 +141,8 @@ ForceCovariance propagate(BrushModelKind kind, const BrushParameters& p, const E
   out.evaluations = u.evaluations;
   out.covariance = u.covariance;
   const double second = tolerance(out.spread(p));
-  if (first > 4.0 * second)
+  share = (max_work - work) / points;
+  if (first > 4.0 * second && !short_of_work && work <= max_work / 2)
   {
     u = transform(second);
     out.evaluations += u.evaluations;
@@ -137,6 +150,25 @@ ForceCovariance propagate(BrushModelKind kind, const BrushParameters& p, const E
   }
   out.method = CovarianceMethod::Unscented;
   out.smooth = u.curvature <= ForceCovariance::kSmooth;
+  out.work = work;
+  if (short_of_work)
+  {
+    // The budget could not buy the sigma points: the linear model's Jacobian (eqs. 61-62 and the friction circle),
+    // no standard deviation beyond what the friction circle allows (|F_t| <= mu F_z, |M_z| <= a mu F_z), which a
+    // linearisation over a wide spread would pass.
+    const double limit = p.mu * p.F_z;
+    const Eigen::Vector3d bound(limit, limit, p.a * limit);
+    Eigen::Vector3d scale;
+    for (int i = 0; i < 3; ++i)
+    {
+      const double sd = std::sqrt(std::max(0.0, guess.covariance(i, i)));
+      scale(i) = sd > bound(i) ? bound(i) / sd : 1.0;
+    }
+    const Eigen::Matrix3d C = scale.asDiagonal() * guess.covariance * scale.asDiagonal();
+    out.covariance = 0.5 * (C + C.transpose());  // symmetric to the last bit
+    out.method = CovarianceMethod::Jacobian;
+    out.smooth = false;
+  }
   // with tilt the steady state ends where |R_gamma| reaches a (Fig. 2): near that edge the forces change without
   // bound, and a spread of phi_gamma that reaches it within three standard deviations is beyond the sigma points
   if (p.tilt && p.a * std::abs(chi_gamma) * (std::abs(phi) + 3.0 * std::sqrt(std::max(0.0, Sigma(2, 2)))) >= 1.0)
@@ -161,15 +193,15 @@ double ForceCovariance::spread(const BrushParameters& p) const
 }
 
 ForceCovariance propagateSlipCovariance(BrushModelKind kind, const BrushParameters& p, const Eigen::Vector2d& sigma,
-                                        double phi, double chi_gamma, const Eigen::Matrix3d& Sigma)
+                                        double phi, double chi_gamma, const Eigen::Matrix3d& Sigma, long max_work)
 {
-  return propagate<3>(kind, p, sigma, phi, chi_gamma, Sigma);
+  return propagate<3>(kind, p, sigma, phi, chi_gamma, Sigma, max_work);
 }
 
 ForceCovariance propagateSlipCovariance(BrushModelKind kind, const BrushParameters& p, const Eigen::Vector2d& sigma,
-                                        double phi, double chi_gamma, const Eigen::Matrix4d& Sigma)
+                                        double phi, double chi_gamma, const Eigen::Matrix4d& Sigma, long max_work)
 {
-  return propagateWithTurn(kind, p, sigma, phi, chi_gamma, Sigma);
+  return propagateWithTurn(kind, p, sigma, phi, chi_gamma, Sigma, max_work);
 }
 
 }  // namespace sphere_contact_estimator

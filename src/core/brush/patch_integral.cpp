@@ -147,7 +147,9 @@ private:
   }
 
   // The work budget is spent: no further path is solved, no interval refined.
-  bool spent() const { return work_ >= max_work_; }
+  // The work budget is spent, or the next path might overrun it (as costly as the costliest so far): no further path
+  // is solved, no interval refined.
+  bool spent() const { return work_ >= max_work_ || work_ + largest_path_work_ > max_work_; }
   double averagePathWork() const { return paths_ > 0 ? static_cast<double>(work_) / paths_ : 0.0; }
 
   Sample solve(double theta)
@@ -169,6 +171,7 @@ private:
     const BristlePath path = BristlePath::across(f_, theta);
     const PathIntegrals r = solvePath(f_, path, path_tol_, false, max_work_ - work_, stepper_);
     work_ += r.work;
+    largest_path_work_ = std::max(largest_path_work_, r.work);
     util2_ = std::max(util2_, r.utilisation2);
     const double J = path.weight;
     s.v[0] = J * r.force.real();
@@ -400,6 +403,7 @@ private:
   double tol_;
   long max_work_;
   long work_ = 0;
+  long largest_path_work_ = 0;  // the costliest path so far: one more like it must fit the budget
   double path_tol_, bound_, delta_;
   bool continuous_ = false;  // the integrand is continuous across the paths (SlidingLaw::Coulomb)
   std::array<Interval, kMaxIntervals> iv_;

@@ -12,7 +12,8 @@ SteadyRows evaluateSteadyRows(const BristleField& field, double y_first, double 
                               long max_work)
 {
   SteadyRows out;
-  const PatchIntegral whole = integratePatch(field, tolerance, max_work);
+  // half the budget for the integral, the rest for the rows; rows the budget cannot finish leave it incomplete
+  const PatchIntegral whole = integratePatch(field, tolerance, max_work / 2);
   out.integral_force = whole.force;
   out.integral_moment = whole.moment;
   out.integral_error = whole.error;
@@ -25,7 +26,13 @@ SteadyRows evaluateSteadyRows(const BristleField& field, double y_first, double 
     const double y0 = y_first + r * spacing;
     if (!(std::abs(y0) < 1.0))
       continue;
-    const PathIntegrals row = solvePath(field, BristlePath::across(field, std::asin(y0)), row_tolerance);
+    if (out.work >= max_work)
+    {
+      out.complete = false;
+      break;
+    }
+    const PathIntegrals row =
+        solvePath(field, BristlePath::across(field, std::asin(y0)), row_tolerance, false, max_work - out.work);
     out.work += row.work;
     const double w = std::abs(spacing);  // dA = dy0 dtau on straight paths
     out.rows_force[0] += w * row.force;
@@ -34,7 +41,10 @@ SteadyRows evaluateSteadyRows(const BristleField& field, double y_first, double 
     out.rows_moment[1 + (r & 1)] += 2.0 * w * row.moment;
     out.rows_error += w * row.error;
     if (row.truncated)
+    {
       out.converged = false;
+      out.complete = false;
+    }
   }
   return out;
 }

@@ -134,6 +134,7 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   o.turn_rate = psi_dot;
   o.rolling_speed = speed;
   const ContactKinematics kin = contactKinematics(in, psi_dot, o);
+  o.work = 0;
   propagateBrushCovariance(in, speed, o);
   judgeMotion(in, o);
   runBrush(kin, o.dt, in.omega.z(), o);
@@ -247,7 +248,14 @@ void ContactEstimator::runBrush(const ContactKinematics& kin, double dt, double 
   if (brush_)
   {
     brush_->setInputSpread(o.covariance.brush_method == CovarianceMethod::None ? 0.0 : o.covariance.brush_spread);
+    // what the covariance left, less the granularity of the work (a path or a substep under way when it ran out): the
+    // message's total stays within the budget
+    // (the transient model at a fixed resolution does what its lattice needs: the user chose its cost)
+    brush_->setWorkBudget(settings_.brush_model == BrushModelKind::Transient
+                              ? BrushModel::kUnlimitedBudget
+                              : settings_.work_budget - o.work - BrushModel::kWorkGranularity);
     o.brush = brush_->update(kin, dt);
+    o.work += o.brush.work;
     o.brush_model_used = brush_->lastModel();
     o.brush_resolution = brush_->lastResolution();
     o.brush_target = brush_->lastTarget();
@@ -328,7 +336,8 @@ void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double
   try
   {
     f = propagateSlipCovariance(kind, p, paper_frame::fromRos(o.slip), paper_frame::zFromRos(o.spin), o.tilt_ratio,
-                                slips);
+                                slips, static_cast<long>(kCovarianceShare * static_cast<double>(settings_.work_budget)));
+    o.work += f.work;
   }
   catch (const std::invalid_argument&)
   {

@@ -61,6 +61,8 @@ void EstimatorSettings::validate() const
   require(finite(max_step) && max_step > 0.0, "max_step", max_step, "finite and > 0 [s]");
   require(finite(stamp_tolerance) && stamp_tolerance >= 0.0 && stamp_tolerance <= max_step, "stamp_tolerance",
           stamp_tolerance, "finite, >= 0 and <= max_step [s]");
+  require(work_budget >= kMinWorkBudget && work_budget <= kMaxWorkBudget, "work_budget", static_cast<double>(work_budget),
+          "between 1e4 and 1e9 (work units of about 10 ns)");
   require(finite(mass_per_length) && mass_per_length >= 0.0, "mass_per_length", mass_per_length,
           "finite and >= 0 [kg/m] (0: load / (gravity effective_length))");
   require(finite(auto_noise_fraction) && auto_noise_fraction >= 0.0 && auto_noise_fraction <= 1.0,

@@ -30,7 +30,14 @@ namespace sphere_contact_estimator
 /// - The transient model at its resolution reports its own estimate (BrushTransient); when that exceeds the
 ///   target the resolution doubles (up to kMaxTransientResolution): rolling, a lattice of twice the resolution
 ///   runs beside it and takes over after the longest path (when it holds nothing of its start); at standstill,
-///   from the next entry into the transient model.
+///   from the next entry into the transient model. It comes back down too: where its estimate stays below an eighth of
+///   the target for the longest path (a lattice of half the resolution is then about four times as far off, second
+///   order), every other bristle forms the coarser lattice (BrushTransient::coarsen: exact for the kept bristles).
+///   reset() restores the configured resolution.
+/// - The work budget (setWorkBudget, BrushForces::work): every evaluation gets what is left of it; a lattice whose
+///   step would not fit is coarsened first (to kMinCoarsened), a finer one is started only where its warm start and
+///   both steps fit, and the warm start on entering the transient model runs at the finest resolution whose cost fits.
+///   What the budget could not buy shows as the estimate above the target, flagged kAccuracyNotMet.
 ///
 /// The transient model is left only after the steady conditions have held over one transit (2a travelled),
 /// when its state is the steady one, and entered from a steady state by rolling it to that state at the last
@@ -69,6 +76,8 @@ public:
   static constexpr double kSteadyPathCost = 250.0;
   static double transientStepCost(int resolution) { return 55.0 * resolution * resolution; }
   static constexpr int kMaxTransientResolution = 128;
+  /// Below this much work left (BrushForces::work units), a switch from the steady model carries no difference.
+  static constexpr long kMinSwitchWork = 2000;
 
 private:
   // the phases of update(): is a steady state good enough (and its lag), which family answers (entering or
@@ -88,8 +97,9 @@ private:
   BrushForces steadyFamily(const Slips& s, const Eigen::Vector2d& sigma, double budget, BrushModelKind& model);
   void stepLag(const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame, double target,
                bool steady_exists, double travel);
-  void enterTransient();
+  void enterTransient(const ContactKinematics& kin, double dt);
   double effectiveTarget() const;
+  long remaining() const { return std::max(1L, work_budget_ - spent_); }
 
   BrushLinear linear_;
   BrushSteady steady_;
@@ -97,7 +107,10 @@ private:
   std::unique_ptr<BrushTransient> finer_;  // twice the resolution, rolling beside transient_ until it takes over
   double finer_travel_ = 0.0;
   int transient_resolution_ = 16;
+  int configured_resolution_ = 16;  // what reset() restores
   int pending_resolution_ = 0;  // asked for by a missed target, applied at the next entry
+  double easy_travel_ = 0.0;    // rolled with the transient estimate below an eighth of the target
+  long spent_ = 0;              // work of the update under way
   bool in_transient_ = false;
   double steady_distance_ = 0.0;  // travelled while the steady conditions held, in transient mode
   SteadyLag lag_;  // of the steady state behind the true one

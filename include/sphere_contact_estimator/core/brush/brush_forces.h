@@ -33,6 +33,9 @@ struct BrushForces
   /// each of F_x, F_y and M_z / a [-]
   double error_estimate = 0.0;
   std::uint32_t flags = 0;        ///< brush_flags bits
+  /// The work this answer took, counted, not timed (series terms, rule nodes, solver steps, bristle substeps), so that
+  /// a replay counts the same on every machine: about 10 ns a unit on this machine kind (docs/benchmarks.md).
+  long work = 0;
 
   bool valid() const { return (flags & brush_flags::kInvalidatingFlags) == 0; }
 };

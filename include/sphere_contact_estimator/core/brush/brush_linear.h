@@ -37,6 +37,8 @@ public:
                            double phi_psi);
 
   /// eq. 62 for any parameters: C_sigma = 8/3 k a^3 [N], C_phi = 3 pi a / 32 C_sigma [N m].
+  /// The work of one evaluation (BrushForces::work): a few products.
+  static constexpr long kWork = 4;
   static double slipStiffness(const BrushParameters& p);
   static double spinStiffness(const BrushParameters& p);
 

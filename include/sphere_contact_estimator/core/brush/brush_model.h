@@ -51,6 +51,15 @@ public:
   /// as a fraction of mu F_z (EstimateCovariance::brush_spread; 0 when unknown). Only auto uses it, to spend no effort
   /// below the noise (BrushParameters::auto_noise_fraction).
   virtual void setInputSpread(double /*spread*/) {}
+  /// The work the next update may do (BrushForces::work units; kUnlimitedBudget: none). The steady model stops its
+  /// refinement there with the best answer reached, flagged kAccuracyNotMet and its estimate still a bound; auto also
+  /// picks the transient lattice whose work fits (brush_auto.h). The transient model at a fixed resolution does what
+  /// its lattice needs and reports it.
+  void setWorkBudget(long budget) { work_budget_ = budget > 0 ? budget : 1; }
+  long workBudget() const { return work_budget_; }
+  static constexpr long kUnlimitedBudget = 1L << 62;
+  /// How far an update's work may pass its budget: the steady path or transient substep under way when it ran out.
+  static constexpr long kWorkGranularity = 4000;
   virtual BrushModelKind kind() const = 0;
 
   /// New parameters in place, keeping the state where it still means something. False when this model
@@ -75,6 +84,7 @@ protected:
   static void checkInput(const ContactKinematics& kinematics, double dt);
 
   BrushParameters p_;
+  long work_budget_ = kUnlimitedBudget;
 };
 
 /// The steady models, which work on slips (eq. 12) in the frame where epsilon = (0, 1): update()

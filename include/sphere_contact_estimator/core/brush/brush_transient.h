@@ -90,6 +90,11 @@ public:
   /// coupling does not carry (re-initialising the rolling direction after standstill or a reversal).
   void rotateFrame(double alpha) override;
 
+  /// Halves the resolution keeping the state: every other bristle in each direction is one of the coarser lattice
+  /// (its pose shifted by half a fine spacing so that they coincide), so the kept bristles keep their deflections and
+  /// histories exactly. False, changing nothing, when the resolution is odd or below 2 kMinCoarsened.
+  bool coarsen();
+  static constexpr int kMinCoarsened = 8;
   /// New parameters. The bristle state is kept unless the lattice changes (patch radius or resolution):
   /// deflections stay meaningful under a new stiffness, load, friction, pressure or formulation, and the
   /// next substep applies the new bound. Returns true when the state had to be reset.
@@ -112,6 +117,12 @@ public:
   double spacing() const { return h_; }
 
   static constexpr int kMaxSubsteps = 4096;
+  /// The work of one lattice point in one substep (BrushForces::work units; measured: about 100 ns under eq. 4b).
+  static constexpr long kPointWork = 10;
+  /// The rows' correction is evaluated only where the budget leaves this much work a row (a row's path and more).
+  static constexpr long kMinRowsWork = 400;
+  /// The work one update at these kinematics would do, before the rows' correction (for auto's choice of lattice).
+  long predictWork(const ContactKinematics& kinematics, double dt) const;
 
 private:
   std::size_t index(int i, int j) const { return static_cast<std::size_t>(j) * w_ + i; }
@@ -132,6 +143,8 @@ private:
   Eigen::Vector3d rowCorrection(int k) const;
   int rowSet(int k) const;
 
+  long work_ = 0;                 // of the update under way
+  int substeps(const ContactKinematics& kin, double dt) const;  // how many the step takes
   double h_;                      // lattice spacing
   int w_;                         // window width in lattice points
   double c0_;                     // lattice coordinate of the window centre, in spacings

@@ -29,12 +29,15 @@ namespace sphere_contact_estimator
 ///   The linearisation is exact only while the model is smooth over the spread; the sliding limit, the onset of
 ///   sliding and the kink of the sliding direction are not (measured against Monte Carlo: docs/benchmarks.md).
 /// - No steady state at the sigma points (|R_gamma| < a with tilt): not propagated (None, defined false).
+/// - A work budget (max_work, BrushForces::work units) the sigma points would overrun (an evaluation stopped by its
+///   share, flagged kAccuracyNotMet): the linear model's Jacobian instead, smooth false (only approximate).
 struct ForceCovariance
 {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   CovarianceMethod method = CovarianceMethod::None;
   bool defined = false;  ///< false: no covariance (the steady state does not exist at the inputs' spread)
   int evaluations = 0;   ///< model evaluations spent
+  long work = 0;         ///< their work (BrushForces::work units)
   /// False where the forces bend over the spread as much as they change across it (a kink or a jump: the onset of
   /// sliding, the friction limit; Unscented::curvature above kSmooth), or, with tilt, where phi_gamma's spread
   /// reaches the edge of the steady state (|R_gamma| = a) within three standard deviations: the covariance is then
@@ -47,9 +50,11 @@ struct ForceCovariance
 
 /// Sigma must be a valid covariance (covarianceProblem); throws std::invalid_argument otherwise.
 ForceCovariance propagateSlipCovariance(BrushModelKind kind, const BrushParameters& p, const Eigen::Vector2d& sigma,
-                                        double phi, double chi_gamma, const Eigen::Matrix3d& Sigma);
+                                        double phi, double chi_gamma, const Eigen::Matrix3d& Sigma,
+                                        long max_work = BrushModel::kUnlimitedBudget);
 /// The same with the rolling direction's angle: Sigma of (sigma_x, sigma_y, phi, psi).
 ForceCovariance propagateSlipCovariance(BrushModelKind kind, const BrushParameters& p, const Eigen::Vector2d& sigma,
-                                        double phi, double chi_gamma, const Eigen::Matrix4d& Sigma);
+                                        double phi, double chi_gamma, const Eigen::Matrix4d& Sigma,
+                                        long max_work = BrushModel::kUnlimitedBudget);
 
 }  // namespace sphere_contact_estimator

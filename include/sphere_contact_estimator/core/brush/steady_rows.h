@@ -30,6 +30,7 @@ struct SteadyRows
   double rows_moment[3] = {};
   double rows_error = 0.0;  ///< bound on the along-row quadrature error of rows_force[0] and rows_moment[0]
   bool converged = false;   ///< the integral met its tolerance within the work budget
+  bool complete = true;     ///< every row was solved within the work budget (else no correction can be made)
   long work = 0;            ///< PathIntegrals::work over the rows and the integral
 };
 

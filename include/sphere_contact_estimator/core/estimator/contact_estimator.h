@@ -91,6 +91,9 @@ struct ContactEstimateData
 
   std::uint32_t flags = 0;    ///< estimate_flags
   double compute_time = 0.0;  ///< wall time of update() [s]
+  /// The work this message took, counted (BrushForces::work units): the covariance's sigma points and the brush model;
+  /// never much above EstimatorSettings::work_budget (the path under way when it ran out).
+  long work = 0;
 
   bool valid() const;
 };
@@ -137,6 +140,8 @@ public:
   /// Heading changes larger than this between two messages re-initialise the frame instead of counting
   /// as a turn rate [rad].
   static constexpr double kHeadingJump = 0.5;
+  /// The covariance's share of the work budget at most; the brush model has the rest.
+  static constexpr double kCovarianceShare = 0.4;
   /// Stamps closer than a ROS stamp's resolution (1 ns) count as duplicates.
   static constexpr double kMinStep = 1e-9;
 

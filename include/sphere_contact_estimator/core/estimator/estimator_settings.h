@@ -48,6 +48,13 @@ struct EstimatorSettings
   /// A stamp earlier than the last by at most this (a source whose stamps jitter) is answered at the inputs it
   /// brings without advancing or resetting anything (flag kStampOutOfOrder); further back, the state resets [s]
   double stamp_tolerance = 0.005;
+  /// The work one message may take, counted (BrushForces::work units, about 10 ns each on this machine kind), the
+  /// covariance's sigma points and the brush model together: where the accuracy target cannot be met within it, the
+  /// best answer reached, flagged kAccuracyNotMet with an estimate that bounds its error. Counted, not timed, so a
+  /// replay gives the same answers on every machine. The default keeps a message within about 1 ms.
+  long work_budget = kDefaultWorkBudget;
+  static constexpr long kDefaultWorkBudget = 100000;
+  static constexpr long kMinWorkBudget = 10000, kMaxWorkBudget = 1000000000;  // below, hardly a path fits
   // rolling resistance (Poeschel et al.), the sphere taken as a cylinder of effective length L
   CylinderModelKind rolling_resistance_model = CylinderModelKind::Table;
   double surface_stiffness = 1e8;  ///< k [N/m^3]

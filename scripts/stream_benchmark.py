@@ -1,0 +1,178 @@
+#!/usr/bin/env python3
+"""Every message of a recorded robot's stream: its cost and its error against a converged reference run.
+
+For each bag (a manoeuvre recorded with demo.launch, e.g. data/manoeuvre.bag and its 1 kHz recording), bag_analyze runs
+the package's default settings (config/contact_estimator.yaml: auto, the twist's covariance propagated, the work budget)
+and, as the reference, the transient model at --reference-resolution with no work budget and, for the reference's own
+error, at half that resolution. Per message: the compute time and the counted work, the model auto used, whether the
+answer is flagged BRUSH_FLAG_ACCURACY_NOT_MET (and why: the target missed within the work budget, substeps truncated),
+and the error max(|dF_x|, |dF_y|, |dM_z| / a) / (mu F_z) against the reference. An unflagged message whose error is
+above its accuracy target by more than the reference's own difference is a failure of the estimate; the summary counts
+them. Grouped per segment of the scenario (--scenario) and over the whole stream. bag_analyze's speed (the fastest of
+three runs) against the bag's duration gives the times real time.
+
+Usage: stream_benchmark.py --bag-analyze PATH --bags A.bag [B.bag ...] --scenario config/manoeuvre_scenario.yaml
+                           [--params config/contact_estimator.yaml] [--reference-resolution 128] [--out JSON]
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from bag_model_accuracy import environment  # noqa: E402  (the tool's own libraries first)
+
+FLAG_SUBSTEPS_TRUNCATED, FLAG_ACCURACY_NOT_MET = 8, 16
+MODELS = {"0": "off", "1": "linear", "2": "steady", "3": "transient", "4": "auto"}
+
+
+def run(tool, bag, csv_path, params, settings, brush_model=None):
+    cmd = [tool, "--input", bag, "--csv", csv_path, "--estimates-only", "--progress", "never"]
+    if params:
+        cmd += ["--params", params]
+    if brush_model:
+        cmd += ["--brush-model", brush_model]
+    if settings:
+        cmd += ["--set"] + ["%s=%s" % kv for kv in settings.items()]
+    with tempfile.TemporaryDirectory() as tmp:
+        cmd += ["--output", os.path.join(tmp, "out.bag")]
+        start = time.perf_counter()
+        done = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True,
+                              env=environment(tool))
+        wall = time.perf_counter() - start
+    if done.returncode != 0:
+        sys.exit("bag_analyze failed (%s):\n%s%s" % (" ".join(cmd), done.stdout, done.stderr))
+    return wall
+
+
+def read(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def segments(path):
+    """(name, start, end) of the scenario's segments, from its YAML"""
+    import yaml
+    with open(path) as f:
+        s = yaml.safe_load(f)
+    out, t = [], 0.0
+    for seg in s["segments"]:
+        d = float(seg.get("duration", 1.0))
+        out.append((seg.get("name", "segment"), t, t + d))
+        t += d
+    return out
+
+
+def quantile(v, q):
+    if not v:
+        return None
+    v = sorted(v)
+    pos = q * (len(v) - 1)
+    i = int(math.floor(pos))
+    j = min(i + 1, len(v) - 1)
+    return v[i] + (v[j] - v[i]) * (pos - i)
+
+
+def distance(a, b):
+    scale = float(a["friction"]) * float(a["load"])
+    if not scale > 0.0:
+        return 0.0
+    return max(abs(float(a["brush_fx"]) - float(b["brush_fx"])), abs(float(a["brush_fy"]) - float(b["brush_fy"])),
+               abs(float(a["brush_mz"]) - float(b["brush_mz"])) / float(a["patch_radius"])) / scale
+
+
+def summarise(rows):
+    times = [1e6 * float(r["compute_time"]) for r in rows]
+    works = [float(r["work"]) for r in rows]
+    flagged = [r for r in rows if int(r["brush_flags"]) & FLAG_ACCURACY_NOT_MET]
+    truncated = sum(1 for r in rows if int(r["brush_flags"]) & FLAG_SUBSTEPS_TRUNCATED)
+    clean = [r for r in rows if not int(r["brush_flags"]) & FLAG_ACCURACY_NOT_MET]
+    errors = [r["_error"] for r in clean]
+    over = [r for r in clean if r["_error"] > float(r["brush_accuracy_target"]) + r["_reference_error"]]
+    models = {}
+    for r in rows:
+        key = MODELS.get(r["brush_model_used"], r["brush_model_used"])
+        if key == "transient":
+            key += " %s" % r["brush_resolution"]
+        models[key] = models.get(key, 0) + 1
+    return {
+        "messages": len(rows),
+        "time_us": {"p50": quantile(times, 0.5), "p99": quantile(times, 0.99), "max": max(times) if times else None},
+        "work": {"p50": quantile(works, 0.5), "p99": quantile(works, 0.99), "max": max(works) if works else None},
+        "models": models,
+        "flagged": len(flagged),
+        "flagged_substeps_truncated": truncated,
+        "flagged_error_max": max((r["_error"] for r in flagged), default=None),
+        "unflagged_error_max": max(errors) if errors else None,
+        "unflagged_error_p99": quantile(errors, 0.99),
+        "unflagged_over_target": len(over),
+        "reference_error_max": max((r["_reference_error"] for r in rows), default=None),
+        "target_median": quantile([float(r["brush_accuracy_target"]) for r in rows], 0.5),
+    }
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--bag-analyze", required=True)
+    ap.add_argument("--bags", nargs="+", required=True)
+    ap.add_argument("--scenario", required=True)
+    ap.add_argument("--params", default=None)
+    ap.add_argument("--reference-resolution", type=int, default=128)
+    ap.add_argument("--out", default=None)
+    a = ap.parse_args()
+    parts = segments(a.scenario)
+    out = {"reference_resolution": a.reference_resolution, "streams": []}
+    with tempfile.TemporaryDirectory() as tmp:
+        for bag in a.bags:
+            name = os.path.splitext(os.path.basename(bag))[0]
+            default_csv = os.path.join(tmp, name + ".csv")
+            walls = [run(a.bag_analyze, bag, default_csv, a.params, {}) for _ in range(3)]
+            reference = {}
+            for n in (a.reference_resolution, a.reference_resolution // 2):
+                path = os.path.join(tmp, "%s_%d.csv" % (name, n))
+                run(a.bag_analyze, bag, path, a.params,
+                    {"resolution": n, "work_budget": 1000000000, "propagate_covariance": "false"}, "transient")
+                reference[n] = read(path)
+            rows = read(default_csv)
+            fine, coarse = reference[a.reference_resolution], reference[a.reference_resolution // 2]
+            if not (len(rows) == len(fine) == len(coarse)):
+                sys.exit("%s: the runs answered different messages (%d, %d, %d)" % (bag, len(rows), len(fine), len(coarse)))
+            t0 = float(rows[0]["stamp"])
+            for r, f, c in zip(rows, fine, coarse):
+                r["_error"] = distance(r, f)
+                r["_reference_error"] = distance(f, c)
+                t = float(r["stamp"]) - t0
+                r["_segment"] = next((p[0] for p in parts if p[1] <= t < p[2] + 1e-9), parts[-1][0])
+            duration = float(rows[-1]["stamp"]) - t0
+            stream = {"bag": os.path.basename(bag), "messages": len(rows),
+                      "rate": (len(rows) - 1) / duration if duration > 0 else None, "duration": duration,
+                      "bag_analyze_seconds": min(walls), "times_real_time": duration / min(walls),
+                      "all": summarise(rows), "segments": {}}
+            for seg in dict.fromkeys(p[0] for p in parts):
+                sel = [r for r in rows if r["_segment"] == seg]
+                if sel:
+                    stream["segments"][seg] = summarise(sel)
+            out["streams"].append(stream)
+            s = stream["all"]
+            print("%s: %d messages at %.0f Hz; bag_analyze %.1fx real time; per message p50 %.0f us, p99 %.0f us, max %.0f us"
+                  " (work max %.0f); flagged %d (%.1f %%); unflagged: largest error %.2g, %d over the target"
+                  % (stream["bag"], len(rows), stream["rate"] or 0.0, stream["times_real_time"], s["time_us"]["p50"],
+                     s["time_us"]["p99"], s["time_us"]["max"], s["work"]["max"], s["flagged"],
+                     100.0 * s["flagged"] / max(1, len(rows)), s["unflagged_error_max"] or 0.0,
+                     s["unflagged_over_target"]), file=sys.stderr)
+    text = json.dumps(out, indent=1)
+    if a.out:
+        with open(a.out, "w") as f:
+            f.write(text)
+    else:
+        print(text)
+
+
+if __name__ == "__main__":
+    main()
