@@ -24,7 +24,15 @@ log "accuracy on the operating points"
 log "auto along the demo bag against the transient model at resolution 256 (about 3 minutes)"
 /usr/bin/python3 "$REPO/scripts/bag_model_accuracy.py" --bag-analyze "$BIN/bag_analyze" --reference-resolution 256 \
   --before "$REPO/bench/demo_bag_before.json" --noise-fraction 0.25 --out "$OUT/bag.json"
-log "node over roscpp on loopback (the node pinned to one core) and bag replay"
+log "the recorded manoeuvre at 100 Hz (data/manoeuvre.bag) and 1 kHz (recorded now): every message against a converged reference (about 3 minutes)"
+if [ ! -s "$OUT/manoeuvre_1khz.bag" ]; then
+  roslaunch sphere_contact_estimator demo.launch scenario:="$REPO/config/manoeuvre_scenario.yaml" rate:=1000 \
+    record:="$OUT/manoeuvre_1khz.bag" output_csv:="$OUT/manoeuvre_1khz_live.csv" > "$OUT/manoeuvre_record.log" 2>&1 || true
+fi
+/usr/bin/python3 "$REPO/scripts/stream_benchmark.py" --bag-analyze "$BIN/bag_analyze" --params "$REPO/config/contact_estimator.yaml" \
+  --scenario "$REPO/config/manoeuvre_scenario.yaml" --reference-resolution 128 \
+  --bags "$REPO/data/manoeuvre.bag" "$OUT/manoeuvre_1khz.bag" --out "$OUT/streams.json"
+log "node over roscpp on loopback (the node pinned to one core), the recorded manoeuvres at their pace, and bag replay"
 PORT=$((20000 + RANDOM % 20000))
 export ROS_MASTER_URI="http://localhost:$PORT"
 roscore -p "$PORT" > "$OUT/roscore.log" 2>&1 &
@@ -35,7 +43,7 @@ until rostopic list > /dev/null 2>&1; do sleep 0.2; done
 rosparam load "$REPO/config/contact_estimator.yaml" /contact_estimator
 taskset -c 1 "$BIN/contact_estimator_node" __name:=contact_estimator > "$OUT/node.log" 2>&1 &
 NODE=$!
-taskset -c 0 "$BIN/node_benchmark" _duration:=2.0 > "$OUT/node.json"
+taskset -c 0 "$BIN/node_benchmark" _duration:=2.0 _streams:="$REPO/data/manoeuvre.bag,$OUT/manoeuvre_1khz.bag" > "$OUT/node.json"
 kill $NODE $ROSCORE 2>/dev/null || true
 wait 2>/dev/null || true
 log "bag_analyze's replay path on a generated bag of 1.1e5 odometry messages, one core (about 3 minutes)"
@@ -44,5 +52,5 @@ taskset -c 0 "$BIN/replay_benchmark" --tf --models off linear steady > "$OUT/rep
 taskset -c 0 "$BIN/replay_benchmark" --writers > "$OUT/writers.json"
 /usr/bin/python3 "$REPO/scripts/benchmark_report.py" --bench "$OUT/bench.json" --accuracy "$OUT/accuracy.json" \
   --node "$OUT/node.json" --bag "$OUT/bag.json" --default-brush-model "$(default_brush_model)" \
-  --replay "$OUT/replay.json" "$OUT/replay_tf.json" "$OUT/writers.json" --replay-profile "$REPO/bench/replay_profile.md" \
+  --replay "$OUT/replay.json" "$OUT/replay_tf.json" "$OUT/writers.json" --streams "$OUT/streams.json" --replay-profile "$REPO/bench/replay_profile.md" \
   --docs "$REPO/docs"

@@ -630,6 +630,50 @@ def node_section(node):
     return lines
 
 
+def streams_section(streams, node):
+    """every message of the recorded manoeuvres (stream_benchmark.py), and the live node on them (node_benchmark)"""
+    ref = streams.get("reference_resolution")
+    lines = ["## Streams", "",
+             "A robot's stream, not held inputs: config/manoeuvre_scenario.yaml, the default 5-kg robot accelerating,"
+             " weaving at 1 m/s with the shell spinning at 8 rad/s, rolling a tight pivot at 0.3 m/s (12 rad/s),"
+             " skidding to a stop, spinning in place and parking, with the demo's sensor noise (carried as the twist's"
+             " covariance), recorded by demo.launch at 100 Hz (data/manoeuvre.bag) and at 1 kHz. Every message through"
+             " bag_analyze at the default settings (auto, the covariance propagated, the work budget of 10⁵): its"
+             " compute time and counted work, the model auto ran, whether it is flagged BRUSH_FLAG_ACCURACY_NOT_MET,"
+             " and its error max(|ΔF_x|, |ΔF_y|, |ΔM_z|/a) / μF_z against a reference run of the same stream: the"
+             " transient model at resolution %s without a work budget (its own error: its difference from resolution"
+             " %s, the last column). An unflagged message counts as over its target only beyond that difference."
+             % (ref, ref // 2 if ref else "?"), ""]
+    for s in streams.get("streams", []):
+        a = s["all"]
+        lines += ["### %s: %d messages at %.0f Hz" % (s["bag"], s["messages"], s["rate"] or 0.0), "",
+                  "bag_analyze: %.1f× real time (%.2f s for %.1f s of odometry, the fastest of three runs)." % (
+                      s["times_real_time"], s["bag_analyze_seconds"], s["duration"]), "",
+                  "| segment | messages | time p50 | p99 | max | work max | models (messages) | flagged | unflagged: largest error | over target | reference's own |",
+                  "|---|---|---|---|---|---|---|---|---|---|---|"]
+        rows = list(s["segments"].items()) + [("**all**", a)]
+        for name, v in rows:
+            t = v["time_us"]
+            models = ", ".join("%s %d" % (k, n) for k, n in sorted(v["models"].items(), key=lambda kv: -kv[1]))
+            lines.append("| %s | %d | %s | %s | %s | %.0f | %s | %s | %s | %d | %s |" % (
+                name, v["messages"], fmt_us(t["p50"]), fmt_us(t["p99"]), fmt_us(t["max"]), v["work"]["max"], models,
+                fmt_share(v["flagged"], v["messages"]), fmt_err(v["unflagged_error_max"]) if v["unflagged_error_max"] is not None else "–",
+                v["unflagged_over_target"], fmt_err(v["reference_error_max"])))
+        lines += ["", "Flagged because the target was missed within the work budget; of those, %d with the coarsest"
+                  " lattice's substeps truncated by it. Targets: accuracy_target 1 %%, raised below the noise to a quarter"
+                  " of the forces' spread (median %s)." % (a["flagged_substeps_truncated"], fmt_err(a["target_median"])), ""]
+    live = node.get("streams", []) if node else []
+    if live:
+        lines += ["The live node (`contact_estimator_node`, one core) fed each recording at its own pace by `node_benchmark`:"
+                  " latency from publication to the estimate's arrival.", "",
+                  "| bag | rate | answered | p50 latency | p99 latency | max latency |", "|---|---|---|---|---|---|"]
+        for r in live:
+            lines.append("| %s | %.0f Hz | %d of %d | %.2f ms | %.2f ms | %.2f ms |" % (
+                r["bag"], r["rate"], r["received"], r["sent"], 1e3 * r["p50"], 1e3 * r["p99"], 1e3 * r["max"]))
+        lines.append("")
+    return lines
+
+
 def replay_section(replays, profile):
     """bag_analyze at scale: replay_benchmark's runs (odometry only, and with /tf beside each message), and the
     profile of the replay path before and after issue 14 (bench/replay_profile.md, measured once, by hand)."""
@@ -878,6 +922,7 @@ def main():
     ap.add_argument("--default-brush-model", type=int, default=4, choices=sorted(BRUSH_MODELS),
                     help="the node's default brush_model (1 linear, 2 steady, 3 transient, 4 auto), for the node"
                     " target")
+    ap.add_argument("--streams", help="stream_benchmark.py output: every message of the recorded manoeuvres")
     ap.add_argument("--docs", required=True)
     a = ap.parse_args()
     with open(a.bench) as f:
@@ -933,6 +978,9 @@ def main():
         lines += replay_section(replays, profile)
     if bag:
         lines += bag_section(bag)
+    if a.streams:
+        with open(a.streams) as f:
+            lines += streams_section(json.load(f), node)
     lines += targets_section(acc, times, g, node, a.default_brush_model)
     lines += ["The plot: time per evaluation on the Fig. 4 set under each sliding law (the steady solver: its median"
               " over both tilt values at each target; the marching scheme: its average over the set; the transient"

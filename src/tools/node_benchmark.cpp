@@ -10,7 +10,7 @@
 //
 // Run by scripts/benchmark.sh beside `contact_estimator_node` (pinned to one core); prints JSON.
 // Private parameters: node (default /contact_estimator), duration per rate [s], rates (list), models (list), streams
-// (list of bag paths; default none).
+// (bag paths, comma-separated; default none).
 
 // STL
 #include <algorithm>
@@ -81,8 +81,18 @@ int main(int argc, char** argv)
   pnh.getParam("rates", rates);
   std::vector<int> models{ 1, 2, 3, 4 };
   pnh.getParam("models", models);
+  // bags, comma-separated (a private parameter given on the command line is a string)
   std::vector<std::string> streams;
-  pnh.getParam("streams", streams);
+  {
+    const std::string list = pnh.param<std::string>("streams", "");
+    for (std::size_t start = 0; start < list.size();)
+    {
+      const std::size_t end = std::min(list.find(',', start), list.size());
+      if (end > start)
+        streams.push_back(list.substr(start, end - start));
+      start = end + 1;
+    }
+  }
 
   ros::AsyncSpinner spinner(1);
   spinner.start();
