@@ -562,10 +562,26 @@ TEST(BrushTransient, BadStepsAreRejected)
   ContactKinematics k;
   k.V_s.x() = INFINITY;
   EXPECT_THROW(model.update(k, 0.01), std::invalid_argument);
-  // a huge step is bounded in work and flagged
-  const BrushForces f = model.update(ContactKinematics::fromSlips({ 0.1, 0.0 }, 0.0, 1.0, 10.0), 1e3);
-  EXPECT_TRUE(f.flags & brush_flags::kSubstepsTruncated);
+  // A huge step: without tilt every bristle takes it whole along its path (its work that of any step); with tilt,
+  // whose substeps are bounded in number, flagged.
+  const ContactKinematics fast = ContactKinematics::fromSlips({ 0.1, 0.0 }, 3.0, 0.9, 10.0);
+  const BrushForces f = model.update(fast, 1e3);
+  EXPECT_FALSE(f.flags & brush_flags::kSubstepsTruncated);
   EXPECT_TRUE(std::isfinite(f.F_x));
+  // no more work than the updates of 1 ms that roll a transit
+  BrushTransient stepped(figure4Parameters());
+  long transit = 0;
+  for (int i = 0; i < 10; ++i)
+    transit += stepped.update(fast, 1e-3).work;
+  EXPECT_LE(f.work, transit);
+  const BrushForces settled = model.update(fast, 1e-3);
+  EXPECT_LE(forceDistance(f, settled, model.parameters()), f.error_estimate + settled.error_estimate);
+  BrushParameters tilted = figure4Parameters();
+  tilted.tilt = true;
+  BrushTransient with_tilt(tilted);
+  const BrushForces g = with_tilt.update(fast, 1e3);
+  EXPECT_TRUE(g.flags & brush_flags::kSubstepsTruncated);
+  EXPECT_TRUE(std::isfinite(g.F_x));
 }
 
 TEST(BrushTransient, CoarseningKeepsEveryOtherBristle)

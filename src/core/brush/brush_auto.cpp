@@ -207,16 +207,17 @@ void BrushAuto::enterTransient(const ContactKinematics& kin, double dt)
     double roll = warm;
     const long whole = transient_->predictWork(last_rolling_, warm), step = transient_->predictWork(kin, dt);
     const long rounding = 2 * transient_->predictWork(last_rolling_, 0.0);  // a substep and the sums, rounded up
-    if (whole + step > remaining() && whole > 0)
+    const long room = remaining() - step - rounding;  // for the roll
+    if (whole > room && whole > 0)
     {
-      roll = warm * std::max(0.0, static_cast<double>(remaining() - step - rounding) / static_cast<double>(whole));
+      roll = warm * std::max(0.0, static_cast<double>(room) / static_cast<double>(whole));
       const double reached = std::min(1.0, V * roll / longestPath(p_));
       entry_error_ += 1.0 - reached;
     }
     if (roll > 0.0)
     {
-      // the lattice's steps only: the rows' correction is evaluated at the step that answers
-      transient_->setWorkBudget(transient_->predictWork(last_rolling_, roll));
+      // the lattice's steps only (the rows' correction is evaluated at the step that answers), within the room
+      transient_->setWorkBudget(std::min(transient_->predictWork(last_rolling_, roll), room));
       spent_ += transient_->update(last_rolling_, roll).work;
     }
     cost_ += transientStepCost(transient_resolution_) * std::ceil(5.0 * transient_resolution_);

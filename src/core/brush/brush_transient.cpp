@@ -13,6 +13,7 @@
 #include "sphere_contact_estimator/core/brush/friction_cap.h"
 #include "sphere_contact_estimator/core/brush/patch_integral.h"
 #include "sphere_contact_estimator/core/brush/rolling_frame.h"
+#include "lattice/bristle_advance.h"
 
 namespace sphere_contact_estimator
 {
@@ -253,7 +254,12 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   work_ = 0;
   BrushForces f;
   bool short_of_work = false;
-  if (dt > 0.0)
+  if (dt > 0.0 && !p_.tilt)
+  {
+    if (!advanceWhole(kin, dt))
+      f.flags |= brush_flags::kSubstepsTruncated;
+  }
+  else if (dt > 0.0)
   {
     const int n = substeps(kin, dt);
     if (n < 0)
@@ -317,8 +323,94 @@ int BrushTransient::substeps(const ContactKinematics& kin, double dt) const
 
 long BrushTransient::predictWork(const ContactKinematics& kin, double dt) const
 {
+  if (!p_.tilt)
+  {
+    // the closed forms of every bristle, the sums, and as many sliding steps per travel as the last update took (a
+    // bristle's steps end with its path: no more than a transit's)
+    const double travel = std::min(kin.V_r.norm() * std::max(dt, 0.0), 2.0 * p_.a);
+    const double steps = last_steps_ / std::max(last_travel_, h_) * travel;
+    return static_cast<long>(w_) * w_ * (kBristleWork + kPointWork) + static_cast<long>(steps) * kStepWork;
+  }
   const int n = dt > 0.0 ? substeps(kin, dt) : 0;
   return (static_cast<long>(n < 0 ? kMaxSubsteps : n) + 1) * w_ * w_ * kPointWork;
+}
+
+bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
+{
+  // The roots move at -V_r (eq. 31 without tilt): the lattice's pose moves by -V_r dt, and the window is recentred on
+  // the patch's new place first, so that it covers every bristle inside at the step's end.
+  V_r_ = kin.V_r;
+  omega_gamma_ = 0.0;
+  o_ -= dt * kin.V_r;
+  recentre();
+  const double a2 = p_.a * p_.a, speed2 = kin.V_r.squaredNorm();
+  const lattice::BristleAdvance advance(p_, kin, timeTolerance());
+  // the sliding steps within what the budget leaves after every bristle's closed forms and the sums; past it, each
+  // bristle's remainder in one step (its error counted in the estimate)
+  long pool = work_budget_ - work_ - static_cast<long>(w_) * w_ * (kBristleWork + kPointWork);
+  bool enough = true;
+  long steps = 0;
+  for (int j = 0; j < w_; ++j)
+    for (int i = 0; i < w_; ++i)
+    {
+      const std::size_t p = index(i, j);
+      const Eigen::Vector2d x1 = position(i, j);
+      if (x1.squaredNorm() >= a2)
+      {
+        u_[p].setZero();  // outside the patch: undeformed (it re-enters under eq. 8)
+        step_error_[p] = 0.0;
+        inside_[p] = sliding_[p] = 0;
+        continue;
+      }
+      Eigen::Vector2d x0 = x1 + dt * kin.V_r;
+      double duration = dt;
+      bool at_rim = false;
+      lattice::BristleState s;
+      if (inside_[p])
+      {
+        s.u = u_[p];
+        s.sliding = sliding_[p];
+        s.slip_travel = slip_travel_[p];
+        s.jump = jump_[p];
+        s.step_error = step_error_[p];
+      }
+      else
+      {
+        s.slip_travel = INFINITY;
+        const double c = x0.squaredNorm() - a2;
+        if (c > 0.0)
+        {
+          // it entered this step, where its path crosses the rim: the first root of |x0 - V_r tau|^2 = a^2
+          const double b = x0.dot(kin.V_r), root = b + std::sqrt(std::max(0.0, b * b - speed2 * c));
+          const double entry = root > 0.0 ? std::min(dt, c / root) : dt;
+          x0 -= entry * kin.V_r;
+          duration = dt - entry;
+          at_rim = true;
+        }
+      }
+      const int allowed = pool > 0 ? static_cast<int>(std::min<long>(kMaxBristleSteps, pool / kStepWork)) : 0;
+      const int taken = advance.advance(s, x0, duration, at_rim, allowed);
+      steps += taken;
+      pool -= taken * kStepWork;
+      enough = enough && (pool >= 0 || taken == 0);
+      u_[p] = s.u;
+      sliding_[p] = s.sliding;
+      slip_travel_[p] = s.slip_travel;
+      jump_[p] = s.jump;
+      step_error_[p] = s.step_error;
+      inside_[p] = 1;
+    }
+  work_ += static_cast<long>(w_) * w_ * kBristleWork + steps * kStepWork;
+  last_steps_ = steps;
+  last_travel_ = std::min(std::sqrt(speed2) * dt, 2.0 * p_.a);
+  return enough;
+}
+
+double BrushTransient::timeTolerance() const
+{
+  // a fraction of the bound at the centre, mu q_z(0) / k: the deflection every bristle's error is measured against
+  const double bound = p_.mu * peakFactor(p_.pressure) * p_.F_z / (boost::math::double_constants::pi * p_.a * p_.a) / p_.k;
+  return kTimeTolerance * bound / (static_cast<double>(p_.resolution) * p_.resolution);
 }
 
 void BrushTransient::substep(const ContactKinematics& kin, double dt)

@@ -121,6 +121,14 @@ public:
   static constexpr long kPointWork = 10;
   /// The rows' correction is evaluated only where the budget leaves this much work a row (a row's path and more).
   static constexpr long kMinRowsWork = 400;
+  /// Without tilt: the work of one lattice point's closed forms over a whole update, and of one sliding step under eq.
+  /// (4b) (a step against two half steps).
+  static constexpr long kBristleWork = 3;
+  static constexpr long kStepWork = 8;
+  static constexpr int kMaxBristleSteps = 256;
+  /// eq. (4b)'s sliding steps: each one's error within this over resolution^2 of the bound at the centre (the lattice's
+  /// own error falls as 1 / resolution^2)
+  static constexpr double kTimeTolerance = 0.05;
   /// The work one update at these kinematics would do, before the rows' correction (for auto's choice of lattice).
   long predictWork(const ContactKinematics& kinematics, double dt) const;
 
@@ -131,6 +139,12 @@ private:
     return o_ + R_ * Eigen::Vector2d((i - c0_) * h_, (j - c0_) * h_);
   }
   void allocate();  // sizes the lattice for p_ and resets
+  // without tilt: every bristle over the whole step along its straight path (lattice/bristle_advance.h); false where the
+  // work budget cut the sliding steps short
+  bool advanceWhole(const ContactKinematics& kin, double dt);
+  double timeTolerance() const;  // eq. (4b)'s steps: what each one's error may reach [m]
+  long last_steps_ = 0;          // the sliding steps of the last whole-step update, and its travel (predictWork)
+  double last_travel_ = 0.0;
   void substep(const ContactKinematics& kin, double dt);
   // one bristle's substep under eq. (4b): the trial deflection scaled back onto the bound, and its own error
   void coulombStep(const ContactKinematics& kin, const FrictionCap& cap, double spin, std::size_t p,

@@ -1,0 +1,493 @@
+#include "bristle_advance.h"
+
+// STL
+#include <algorithm>
+#include <cmath>
+
+// Package
+#include "sphere_contact_estimator/core/numerics/polynomial_roots.h"
+
+namespace sphere_contact_estimator::lattice
+{
+namespace
+{
+constexpr int kMaxEvents = 16;  // onsets and re-adhesions per bristle and update (more only at a tangency's rounding)
+
+// Whether p(s) = sum c[i] s^i (degree n <= 4) can be positive on (0, span]: its Bernstein coefficients on [0, span]
+// bound it (convex hull), so all of them <= 0 means it is not. A cheap test before the exact isolation.
+bool mayBePositive(const double* c, int n, double span)
+{
+  double a[5];
+  double scale = 1.0;
+  for (int i = 0; i <= n; ++i, scale *= span)
+    a[i] = c[i] * scale;
+  for (int i = n + 1; i <= 4; ++i)
+    a[i] = 0.0;
+  // degree-4 Bernstein coefficients of a polynomial of degree <= 4 (C(j, i) / C(4, i))
+  const double b[5] = { a[0], a[0] + 0.25 * a[1], a[0] + 0.5 * a[1] + a[2] / 6.0,
+                        a[0] + 0.75 * a[1] + 0.5 * a[2] + 0.25 * a[3], a[0] + a[1] + a[2] + a[3] + a[4] };
+  return *std::max_element(b + 1, b + 5) > 0.0;
+}
+}  // namespace
+
+// A stretch of a path from its start x_s (tau = 0): t(tau) = 1 - |x_s - V_r tau|^2 / a^2 = t0 + t1 tau + t2 tau^2.
+struct BristleAdvance::Piece
+{
+  Eigen::Vector2d x, u;
+  double t0, t1, t2;
+};
+
+BristleAdvance::BristleAdvance(const BrushParameters& p, const ContactKinematics& kin, double tolerance)
+  : pressure_(p.pressure)
+  , law_(p.sliding_law)
+  , m_(pressure_.squaredExponent())
+  , c_(p.mu * pressure_.peakFactor() * p.F_z / (M_PI * p.a * p.a) / p.k)
+  , inv_a2_(1.0 / (p.a * p.a))
+  , V_r_(kin.V_r)
+  , V_s_(kin.V_s)
+  , w_dot_(-kin.omega_z * kin.V_r.y(), kin.omega_z * kin.V_r.x())  // d/dtau of -A_omega_z x at dx/dtau = -V_r
+  , omega_z_(kin.omega_z)
+  , speed2_(kin.V_r.squaredNorm())
+  , tolerance_(tolerance)
+{
+}
+
+double BristleAdvance::onset(const Piece& s, double span, bool at_rim) const
+{
+  // g = |u|^2 - (c f)^2, f^2 = t^m: a polynomial of degree <= 4 in tau
+  const Eigen::Vector2d w = drive(s.x), alpha = 0.5 * w_dot_;
+  double g[5] = { s.u.squaredNorm(), 2.0 * s.u.dot(w), w.squaredNorm() + 2.0 * s.u.dot(alpha), 2.0 * w.dot(alpha),
+                  alpha.squaredNorm() };
+  const double c2 = c_ * c_, t0 = at_rim ? 0.0 : s.t0;
+  double b[5] = {};
+  switch (m_)
+  {
+    case 0:
+      b[0] = c2;
+      break;
+    case 1:
+      b[0] = c2 * t0, b[1] = c2 * s.t1, b[2] = c2 * s.t2;
+      break;
+    default:
+      b[0] = c2 * t0 * t0, b[1] = 2.0 * c2 * t0 * s.t1, b[2] = c2 * (s.t1 * s.t1 + 2.0 * t0 * s.t2);
+      b[3] = 2.0 * c2 * s.t1 * s.t2, b[4] = c2 * s.t2 * s.t2;
+  }
+  for (int i = 0; i < 5; ++i)
+    g[i] -= b[i];
+  // At the start: on the bound (entering at a rim where it vanishes, re-adhered, or rounding) and moving out of it, it
+  // slides at once. Moving in, the leading terms that are only rounding are set to zero: a re-adhesion is a tangency
+  // (|u| and the bound grow alike there), which rounding would otherwise turn into a spurious onset just after it.
+  const double eps = 1e-12 * c2;
+  if (g[0] > eps)
+    return 0.0;
+  if (g[0] >= -eps)
+  {
+    g[0] = 0.0;
+    for (int i = 1; i < 5; ++i)
+    {
+      const double scale = 1e-12 * (std::abs(g[i]) + std::abs(b[i]) + 1e-300);
+      if (g[i] > scale)
+        return 0.0;
+      if (g[i] < -scale)
+        break;
+      g[i] = 0.0;
+    }
+  }
+  if (!mayBePositive(g, 4, span))
+    return INFINITY;
+  double root;
+  return numerics::signChanges(g, 4, 0.0, span, &root, 1) == 1 ? root : INFINITY;
+}
+
+double BristleAdvance::rigidReAdhesion(const Piece& s, double span) const
+{
+  // G: d(c f)/dtau >= |w|, with f = t^{m/2}; t' = t1 + 2 t2 tau >= 0 (the bound grows) up to tau* = -t1 / (2 t2)
+  if (m_ == 0 || speed2_ == 0.0)
+    return INFINITY;  // the bound does not change along the path: G is only where w = 0
+  const double end = std::min(span, -s.t1 / (2.0 * s.t2));
+  if (!(end >= 0.0))
+    return INFINITY;
+  const Eigen::Vector2d w = drive(s.x);
+  const double w2[3] = { w.squaredNorm(), 2.0 * w.dot(w_dot_), w_dot_.squaredNorm() };
+  const double c2 = c_ * c_;
+  const double td2[3] = { s.t1 * s.t1, 4.0 * s.t1 * s.t2, 4.0 * s.t2 * s.t2 };  // t'^2
+  double P[5] = {};
+  int n;
+  if (m_ == 2)
+  {
+    // c^2 t'^2 - |w|^2
+    for (int i = 0; i < 3; ++i)
+      P[i] = c2 * td2[i] - w2[i];
+    n = 2;
+  }
+  else
+  {
+    // (c t' / (2 sqrt t))^2 >= |w|^2  <=>  c^2 t'^2 - 4 t |w|^2 >= 0
+    const double t[3] = { s.t0, s.t1, s.t2 };
+    for (int i = 0; i < 3; ++i)
+      P[i] = c2 * td2[i];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        P[i + j] -= 4.0 * t[i] * w2[j];
+    n = 4;
+  }
+  if (P[0] >= 0.0)
+    return 0.0;
+  if (end == 0.0 || !mayBePositive(P, n, end))
+    return INFINITY;
+  double root;
+  return numerics::signChanges(P, n, 0.0, end, &root, 1) == 1 ? root : INFINITY;
+}
+
+double BristleAdvance::coulombSlideStill(BristleState& s, const Eigen::Vector2d& x, double span) const
+{
+  // Without rolling the drive and the bound stay put: with delta the angle from w to u, b delta' = -|w| sin delta,
+  // so tan(delta / 2) decays as e^{-|w| tau / b} (exact). It re-adheres at once where w pulls it back (w . u < 0).
+  const double b = bound(x);
+  const Eigen::Vector2d w = drive(x);
+  const double wn = w.norm();
+  if (b <= 0.0)
+  {
+    s.u.setZero();
+    return INFINITY;
+  }
+  if (wn == 0.0)
+    return INFINITY;  // no drive: it stays where it is
+  const double un = s.u.norm();
+  if (un == 0.0)
+    return 0.0;
+  const Eigen::Vector2d e_w = w / wn, e = s.u / un;
+  const double cos_d = e.dot(e_w), sin_d = e_w.x() * e.y() - e_w.y() * e.x();
+  if (cos_d < 0.0)
+    return 0.0;
+  const double k = sin_d / (1.0 + cos_d) * std::exp(-wn * span / b), k2 = k * k;
+  const double c = (1.0 - k2) / (1.0 + k2), sn = 2.0 * k / (1.0 + k2);
+  s.u = b * (c * e_w + sn * Eigen::Vector2d(-e_w.y(), e_w.x()));
+  return INFINITY;
+}
+
+// Along a sliding piece from x_p: the drive, the bound and its rate at time tau after its start.
+struct BristleAdvance::Along
+{
+  Eigen::Vector2d x, w;  // at tau = 0
+  double t0, t1, t2;     // t = 1 - r^2 / a^2
+};
+
+BristleAdvance::Point BristleAdvance::at(const Along& p, double tau) const
+{
+  Point q;
+  q.w = p.w + tau * w_dot_;
+  const double t = p.t0 + tau * (p.t1 + tau * p.t2), dt = p.t1 + 2.0 * tau * p.t2;
+  q.b = c_ * pressure_.shape(t);
+  q.b_dot = c_ * pressure_.shapeSlope(t) * dt;
+  return q;
+}
+
+double BristleAdvance::returnMapping(BristleState& s, const Along& p, double tau, double d, double& error,
+                                     bool& slides) const
+{
+  // The closed-form adhering deflection over the step, scaled back onto the bound at its end where it lies beyond it
+  // (backward Euler of eq. 4b, stable at any pull). One step against two half steps: the first-order method's error is
+  // twice their difference, their combination 2 u_half - u_one (put back on the bound) second order.
+  const auto project = [](Eigen::Vector2d& v, double b) {
+    const double n = v.norm();
+    if (n <= b)
+      return false;
+    v *= b / n;
+    return true;
+  };
+  const Eigen::Vector2d x = p.x - tau * V_r_, x_mid = x - 0.5 * d * V_r_;
+  const double b_end = at(p, tau + d).b;
+  const Eigen::Vector2d trial = adhere(x, s.u, d);
+  Eigen::Vector2d one = trial;
+  const bool slides_one = project(one, b_end);
+  Eigen::Vector2d half = adhere(x, s.u, 0.5 * d);
+  project(half, at(p, tau + 0.5 * d).b);
+  half = adhere(x_mid, half, 0.5 * d);
+  slides = project(half, b_end);
+  const double diff = (one - half).norm();
+  Eigen::Vector2d next = half;
+  if (slides_one && slides)
+  {
+    const double theta = b_end > 0.0 ? std::min(1.0, (trial - s.u).norm() / b_end) : 1.0;
+    error = 2.0 * theta * diff;
+    const Eigen::Vector2d combined = 2.0 * half - one;
+    const double cn = combined.norm();
+    if (cn > 0.0)
+      next = b_end / cn * combined;
+  }
+  else
+    error = diff;  // it re-adheres within the step: the first-order difference
+  s.u = next;
+  const double tn = trial.norm();
+  return tn > b_end ? b_end / tn : 1.0;  // how a direction error carried into the step shrinks
+}
+
+double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_start, double span, int& steps,
+                                    int max_steps) const
+{
+  // The direction u = b e obeys b e' = (I - e e^T) w (eq. 4b with |u| = b). In the frame of the direction e0 at a
+  // step's start, t = tan((theta - theta0) / 2) obeys the Riccati equation t' = A + B t - A t^2 with B = -w.e0 / b and
+  // A = (e0 x w) / (2 b): rational, small over a step. Where the pull |w| / b is not stiff over the step, Dormand and
+  // Prince's explicit 5(4) pair with its embedded estimate; where it is, the return mapping (stable at any pull), or
+  // where the bound is below half the tolerance, no steps at all (|u - u_true| <= 2 b whatever the direction).
+  // The sliding speed w.e - db/dtau (eq. 4b's multiplier) is watched at the stages; where it turns negative the bristle
+  // re-adheres, located on the step's cubic Hermite interpolant.
+  static constexpr double kC[7] = { 0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0 };
+  static constexpr double kA[7][6] = { {},
+                                       { 0.2 },
+                                       { 3.0 / 40.0, 9.0 / 40.0 },
+                                       { 44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0 },
+                                       { 19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0 },
+                                       { 9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0,
+                                         -5103.0 / 18656.0 },
+                                       { 35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0,
+                                         11.0 / 84.0 } };
+  static constexpr double kE[7] = { 71.0 / 57600.0,      0.0,          -71.0 / 16695.0, 71.0 / 1920.0,
+                                    -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0 };
+  const Along p{ x_start, drive(x_start), 1.0 - x_start.squaredNorm() * inv_a2_, 2.0 * x_start.dot(V_r_) * inv_a2_,
+                 -speed2_ * inv_a2_ };
+  const auto pushing = [](const Point& q, const Eigen::Vector2d& e) { return q.w.dot(e) - q.b_dot; };
+  double tau = 0.0;
+  double step = span;
+  {
+    const Point q = at(p, 0.0);
+    if (q.b > 0.0 && s.u.squaredNorm() > 0.0 && pushing(q, s.u / s.u.norm()) < 0.0)
+      return 0.0;  // the drive pulls it back at once: it re-adheres here
+  }
+  while (tau < span)
+  {
+    if (steps >= max_steps)
+    {
+      // no work left for steps: the remainder's return mapping alone, no claim beyond |u|, |u_true| <= the bound
+      const double d = span - tau;
+      const Point q1 = at(p, span);
+      Eigen::Vector2d trial = adhere(p.x - tau * V_r_, s.u, d);
+      const double n = trial.norm();
+      const bool slides = n > q1.b;
+      if (slides)
+        trial *= q1.b / n;
+      s.u = trial;
+      s.step_error = 2.0 * std::max(q1.b, at(p, tau).b);
+      return slides ? INFINITY : span;
+    }
+    double d = std::min(step, span - tau);
+    const Point q0 = at(p, tau), q1 = at(p, tau + d);
+    const double b_min = std::min(q0.b, q1.b);
+    // the bound along a straight path is largest at an end or at its vertex (t is a concave quadratic)
+    double b_max = std::max(q0.b, q1.b);
+    if (p.t2 < 0.0)
+    {
+      const double vertex = -p.t1 / (2.0 * p.t2);
+      if (vertex > tau && vertex < tau + d)
+        b_max = std::max(b_max, at(p, vertex).b);
+    }
+    if (b_max <= 0.5 * tolerance_)
+    {
+      // too little bound for any direction to matter: along the drive, the error bound 2 b
+      const double wn = q1.w.norm();
+      s.u = wn > 0.0 ? Eigen::Vector2d(q1.b / wn * q1.w) : Eigen::Vector2d(s.u.normalized() * q1.b);
+      s.step_error = 2.0 * q1.b;
+      tau += d;
+      continue;
+    }
+    const double pull = std::max(q0.w.norm(), q1.w.norm()) / std::max(b_min, 1e-300);
+    ++steps;
+    bool stiff = pull * d > 3.0;
+    double k[7], t[7];
+    Point q[7];
+    bool turned = false;
+    const double un = s.u.norm(), w0n = q0.w.norm();
+    // (on the rim the bound, and u, vanish: the drive's direction)
+    const Eigen::Vector2d e0 = un > 0.0 ? Eigen::Vector2d(s.u / un)
+                                        : (w0n > 0.0 ? Eigen::Vector2d(q0.w / w0n) : Eigen::Vector2d(1.0, 0.0));
+    if (!stiff)
+    {
+      for (int i = 0; i < 7; ++i)
+      {
+        double ti = 0.0;
+        for (int j = 0; j < i; ++j)
+          ti += kA[i][j] * k[j];
+        ti *= d;
+        t[i] = ti;
+        q[i] = i == 0 ? q0 : (i >= 5 ? q1 : at(p, tau + kC[i] * d));
+        const double inv_b = q[i].b > 0.0 ? 1.0 / q[i].b : 0.0;
+        const double B = -q[i].w.dot(e0) * inv_b, A = 0.5 * (e0.x() * q[i].w.y() - e0.y() * q[i].w.x()) * inv_b;
+        k[i] = A + ti * (B - A * ti);
+        turned = turned || !(std::abs(ti) <= 1.0);  // by more than a right angle within the step: too long a step
+      }
+      stiff = turned && !(d > 1e-9 * span);  // a step the explicit pair cannot take any shorter: the return mapping's
+    }
+    if (stiff)
+    {
+      // stiff over this step: the return mapping's step doubling, its own step control
+      double error;
+      bool slides;
+      const Eigen::Vector2d u0 = s.u;
+      const double shrink = returnMapping(s, p, tau, d, error, slides);
+      if (error > tolerance_ && d > 1e-9 * span)
+      {
+        s.u = u0;
+        step = d * std::max(0.2, 0.9 * std::cbrt(tolerance_ / error));
+        continue;
+      }
+      s.step_error = s.step_error * shrink + error;
+      tau += d;
+      if (!slides)
+        return tau;
+      step = error > 0.0 ? d * std::min(4.0, 0.9 * std::cbrt(tolerance_ / error)) : 4.0 * d;
+      continue;
+    }
+    double err_t = 0.0;
+    for (int j = 0; j < 7; ++j)
+      err_t += kE[j] * k[j];
+    const double error = 2.0 * q1.b * std::abs(d * err_t);  // |d theta| <= 2 |d t|
+    if ((turned || error > tolerance_) && d > 1e-9 * span)
+    {
+      step = d * (turned ? 0.25 : std::max(0.2, 0.9 * std::pow(tolerance_ / error, 0.2)));
+      continue;
+    }
+    // the direction at stage i: e0 turned by 2 atan(t_i)
+    const auto direction = [&](double ti) {
+      const double n = 1.0 / (1.0 + ti * ti);
+      const double c = (1.0 - ti * ti) * n, sn = 2.0 * ti * n;
+      return Eigen::Vector2d(c * e0.x() - sn * e0.y(), sn * e0.x() + c * e0.y());
+    };
+    // re-adhesion: the first stage (in time) where the bristle is no longer pushed outward
+    int first = -1;
+    for (int i = 1; i < 7 && first < 0; ++i)
+      if (i != 5 && pushing(q[i], direction(t[i])) < 0.0)  // stage 6 and 7 lie at the step's end
+        first = i;
+    if (first > 0)
+    {
+      // between the previous stage and that one, on the cubic Hermite interpolant of t over the step, by regula falsi
+      const double t1 = t[6], f0 = k[0] * d, f1 = k[6] * d;
+      const auto cubic = [&](double x) {
+        const double x2 = x * x, x3 = x2 * x;
+        return (3.0 * x2 - 2.0 * x3) * t1 + (x - 2.0 * x2 + x3) * f0 + (x3 - x2) * f1;
+      };
+      const auto speed = [&](double x) { return pushing(at(p, tau + x * d), direction(cubic(x))); };
+      double lo = kC[first == 6 ? 4 : first - 1], hi = kC[first];
+      double s_lo = speed(lo), s_hi = speed(hi);
+      if (s_lo < 0.0)
+        lo = 0.0, s_lo = speed(0.0);
+      for (int it = 0; it < 30 && hi - lo > 1e-12; ++it)
+      {
+        const double mid = s_lo > 0.0 && s_hi < 0.0 ? lo + (hi - lo) * s_lo / (s_lo - s_hi) : 0.5 * (lo + hi);
+        const double x = std::min(std::max(mid, lo + 0.01 * (hi - lo)), hi - 0.01 * (hi - lo));
+        const double sx = speed(x);
+        if (sx < 0.0)
+          hi = x, s_hi = sx;
+        else
+          lo = x, s_lo = sx;
+      }
+      const double x = hi;
+      s.u = at(p, tau + x * d).b * direction(cubic(x));
+      s.step_error += error;
+      return tau + x * d;
+    }
+    // the carried error: the bound's ratio, and the pull's contraction of a direction error (d/dt of the right side is
+    // B - 2 A t; the larger of its values at the ends)
+    const auto slope = [&](const Point& qq, double ti) {
+      const double inv_b = qq.b > 0.0 ? 1.0 / qq.b : 0.0;
+      const double B = -qq.w.dot(e0) * inv_b, A = 0.5 * (e0.x() * qq.w.y() - e0.y() * qq.w.x()) * inv_b;
+      return B - 2.0 * A * ti;
+    };
+    const double growth = std::exp(std::min(0.0, d * std::max(slope(q0, 0.0), slope(q1, t[6])) ) );
+    s.step_error = s.step_error * (q0.b > 0.0 ? std::min(1.0, q1.b / q0.b) : 1.0) * growth + error;
+    s.u = q1.b * direction(t[6]);
+    tau += d;
+    step = error > 0.0 ? d * std::min(5.0, 0.9 * std::pow(tolerance_ / error, 0.2)) : 5.0 * d;
+  }
+  return INFINITY;
+}
+
+int BristleAdvance::advance(BristleState& s, const Eigen::Vector2d& x_start, double duration, bool at_rim,
+                            int max_steps) const
+{
+  int steps = 0;
+  if (!(c_ > 0.0))
+  {
+    s.u.setZero();  // no load or no friction: no bristle holds a deflection
+    s.sliding = false;
+    s.slip_travel = INFINITY;
+    return 0;
+  }
+  Eigen::Vector2d x = x_start;
+  double left = duration;
+  const double speed = std::sqrt(speed2_);
+  const auto piece = [&](const Eigen::Vector2d& at, const Eigen::Vector2d& u) {
+    return Piece{ at, u, 1.0 - at.squaredNorm() * inv_a2_, 2.0 * at.dot(V_r_) * inv_a2_, -speed2_ * inv_a2_ };
+  };
+  bool rim = at_rim;
+  for (int event = 0; left > 0.0; ++event)
+  {
+    const bool final_event = event >= kMaxEvents;
+    if (final_event && event == kMaxEvents)
+      s.step_error += 2.0 * c_;  // events it did not follow: no claim beyond |u|, |u_true| <= the bound
+    if (!s.sliding)
+    {
+      const Piece p = piece(x, s.u);
+      const double on = final_event ? INFINITY : onset(p, left, rim);
+      rim = false;
+      if (!(on < left))
+      {
+        s.u = adhere(x, s.u, left);
+        return steps;
+      }
+      const Eigen::Vector2d u_on = adhere(x, s.u, on);
+      x -= on * V_r_;
+      left -= on;
+      s.sliding = true;
+      s.slip_travel = 0.0;
+      s.jump.setZero();
+      if (law_ == SlidingLaw::Rigid)
+      {
+        // the deflection jumps from the adhering direction onto the sliding field
+        const Eigen::Vector2d w = drive(x);
+        const double b = bound(x), wn = w.norm();
+        s.u = wn > 0.0 ? Eigen::Vector2d(b / wn * w) : u_on;
+        s.jump = u_on - s.u;
+      }
+      else
+        s.u = u_on;
+      continue;
+    }
+    if (law_ == SlidingLaw::Rigid)
+    {
+      const double re = final_event ? INFINITY : rigidReAdhesion(piece(x, s.u), left);
+      const double run = std::min(re, left);
+      x -= run * V_r_;
+      left -= run;
+      const Eigen::Vector2d w = drive(x);
+      const double b = bound(x), wn = w.norm();
+      if (wn > 0.0)
+        s.u = b / wn * w;
+      else if (s.u.squaredNorm() > 0.0)
+        s.u *= b / s.u.norm();
+      if (re < INFINITY && re <= run)
+      {
+        s.sliding = false;
+        s.slip_travel = INFINITY;
+      }
+      else
+        s.slip_travel += speed * run;
+      continue;
+    }
+    // eq. (4b)
+    const double re = speed2_ == 0.0 ? coulombSlideStill(s, x, left)
+                                     : coulombSlide(s, x, left, steps, final_event ? steps + 1 : max_steps);
+    const double run = std::min(re, left);
+    x -= run * V_r_;
+    left -= run;
+    s.slip_travel += speed * run;
+    if (re < INFINITY)
+    {
+      s.sliding = false;  // it adheres from here (without rolling: pulled back at once)
+      s.slip_travel = INFINITY;
+    }
+  }
+  return steps;
+}
+
+}  // namespace sphere_contact_estimator::lattice

@@ -1,0 +1,93 @@
+#pragma once
+
+// Eigen
+#include <Eigen/Core>
+
+// Package
+#include "sphere_contact_estimator/core/brush/brush_parameters.h"
+#include "sphere_contact_estimator/core/brush/contact_kinematics.h"
+#include "sphere_contact_estimator/core/brush/pressure_law.h"
+
+namespace sphere_contact_estimator::lattice
+{
+/// What the lattice keeps of one bristle between updates.
+struct BristleState
+{
+  Eigen::Vector2d u = Eigen::Vector2d::Zero();  ///< deflection [m]
+  bool sliding = false;
+  double slip_travel = 0.0;                       ///< travel since the onset of sliding [m] (infinite while adhering)
+  Eigen::Vector2d jump = Eigen::Vector2d::Zero();  ///< rigid law: deflection before minus after that onset [m]
+  double step_error = 0.0;                        ///< eq. (4b): bound on the deflection's error from the time steps [m]
+};
+
+/// One bristle over a whole update along its straight path (no tilt: the roots move at -V_r, eq. 31 with
+/// omega_gamma = 0), its events located within the update instead of one lattice spacing per substep.
+///
+/// With the inputs held over the update the drive of eq. (1), w = -V_s - A_omega_z x, is affine in the time tau
+/// along the path (x = x_s - V_r tau), so an adhering bristle (v_s = 0) has the closed form
+///     u(tau) = u_s + w_s tau + (1/2) w' tau^2,   w' = omega_z J V_r,
+/// and the bound mu q_z / k = c f(t) with f^2 = t^m, t = 1 - |x|^2 / a^2 quadratic in tau (pressure_law.h): the onset
+/// of sliding, |u|^2 = (mu q_z / k)^2, is the first sign change of a quartic (numerics::signChanges, exact isolation).
+/// Sliding:
+/// - rigid law (Sect. 6): u = (mu q_z / k) w / |w|, no history; it re-adheres where the path enters G, where the bound
+///   grows along the motion faster than |w| (d(mu q_z / k)/dtau >= |w|, a polynomial condition of degree 2 or 4):
+///   exact.
+/// - eq. (4b): the trial deflection (the closed form over a step) scaled back onto the bound, the implicit form of eq.
+///   (4b); each step compared with two half steps, their Richardson combination taken (second order), steps chosen per
+///   bristle so that the first-order estimate stays within `tolerance` of the bound. Without rolling (V_r = 0: parked,
+///   spin in place) drive and bound are constant along the "path" and the direction relaxes towards the drive in
+///   closed form, tan(delta / 2) ~ e^{-|w| tau / b}: exact, one step.
+class BristleAdvance
+{
+public:
+  /// tolerance: what each sliding step's error estimate may reach [m]
+  BristleAdvance(const BrushParameters& p, const ContactKinematics& kin, double tolerance);
+
+  /// Advances `s` from position x_start [m] over `duration` [s]; at_rim: x_start is on the patch edge (an entering
+  /// bristle, u = 0 there). max_steps bounds the sliding steps it may take (the remainder in one step, its error
+  /// counted). Returns the steps taken (work).
+  int advance(BristleState& s, const Eigen::Vector2d& x_start, double duration, bool at_rim, int max_steps) const;
+
+  /// The bound mu q_z / k [m] at x.
+  double bound(const Eigen::Vector2d& x) const { return c_ * pressure_.shape(1.0 - x.squaredNorm() * inv_a2_); }
+
+  /// The drive -V_s - A_omega_z x [m/s] at x.
+  Eigen::Vector2d drive(const Eigen::Vector2d& x) const
+  {
+    return { -V_s_.x() + omega_z_ * x.y(), -V_s_.y() - omega_z_ * x.x() };
+  }
+
+private:
+  struct Piece;  // a stretch of the path from its start: position, deflection, t's coefficients
+  struct Along;  // the same for a sliding piece: position and drive at its start
+  struct Point   // what eq. (4b) needs at a time along a sliding piece
+  {
+    Eigen::Vector2d w;
+    double b, b_dot;
+  };
+  Point at(const Along& piece, double tau) const;
+  // one return-mapping step (and two half steps) of a sliding bristle at tau along the piece; returns the factor a
+  // carried direction error shrinks by
+  double returnMapping(BristleState& s, const Along& piece, double tau, double d, double& error, bool& slides) const;
+  // the first time in (0, span] where an adhering bristle reaches the bound (span + 1 if it does not); u and t at it
+  double onset(const Piece& piece, double span, bool at_rim) const;
+  double rigidReAdhesion(const Piece& piece, double span) const;
+  // eq. (4b)'s sliding from the piece's start over span: returns when it ended (re-adhered: < span) and the steps
+  double coulombSlide(BristleState& s, const Eigen::Vector2d& x_start, double span, int& steps, int max_steps) const;
+  double coulombSlideStill(BristleState& s, const Eigen::Vector2d& x, double span) const;
+  Eigen::Vector2d adhere(const Eigen::Vector2d& x_start, const Eigen::Vector2d& u_start, double tau) const
+  {
+    return u_start + tau * (drive(x_start) + 0.5 * tau * w_dot_);
+  }
+
+  PressureLaw pressure_;
+  SlidingLaw law_;
+  int m_;                                // f^2 = t^m
+  double c_;                             // the bound at the centre, mu q_z(0) / k [m]
+  double inv_a2_;
+  Eigen::Vector2d V_r_, V_s_, w_dot_;    // w' = d w / d tau along a path
+  double omega_z_, speed2_;
+  double tolerance_;
+};
+
+}  // namespace sphere_contact_estimator::lattice
