@@ -78,6 +78,8 @@ void BrushAuto::reset()
   in_transient_ = false;
   steady_distance_ = 0.0;
   lag_.reset();
+  have_check_ = false;
+  lag_travel_ = 0.0;
   have_rolling_ = false;
   offset_ = BrushForces{};
   answered_ = false;
@@ -275,24 +277,40 @@ BrushAuto::SteadyCheck BrushAuto::checkSteady(const Slips& s, const Eigen::Vecto
   if (!s.defined)
   {
     lag_.reset();
+    have_check_ = false;
+    lag_travel_ = 0.0;
     return c;
   }
   if (p_.tilt && std::abs(s.phi_gamma) * p_.a > 1.0)
     c.steady = false;  // |R_gamma| < a: no steady state on an inner disc
   c.renewed = s.V_r * dt >= longestPath(p_);
+  linear_bound_ = BrushLinear::errorBound(p_, sigma, s.phi, s.phi_gamma, s.phi_psi);
+  // In the transient model the lag only decides when to leave it, which takes steady conditions held over a transit:
+  // it is evaluated once the patch has rolled a quarter of its radius since the last time (the lag then takes the
+  // changes and the travel since at once), not at every message of a fast stream.
+  if (in_transient_ && have_check_ && !c.renewed && lag_travel_ + s.V_r * dt < kLagStride * p_.a)
+  {
+    lag_travel_ += s.V_r * dt;
+    c.steady = c.steady && last_check_.steady;
+    c.lag = last_check_.lag;
+    return c;
+  }
+  const double travel = s.V_r * dt + lag_travel_;
+  lag_travel_ = 0.0;
   // the lag of the steady state behind the true one, from the changes of the steady forces
   const double limit = p_.mu * p_.F_z;
-  linear_bound_ = BrushLinear::errorBound(p_, sigma, s.phi, s.phi_gamma, s.phi_psi);
   // with tilt the paths are arcs about the tilting centre, longer than their chords: the central one by
   // (|R_gamma| / a) asin(a / |R_gamma|), up to pi / 2; the patch renews that much more slowly
   double stretch = 1.0;
   const double a_phi_gamma = std::abs(s.phi_gamma) * p_.a;
   if (p_.tilt && a_phi_gamma > 0.0)
     stretch = a_phi_gamma < 1.0 ? std::asin(a_phi_gamma) / a_phi_gamma : 0.5 * boost::math::double_constants::pi;
-  stepLag(s, sigma, frame, target, c.steady, s.V_r * dt / stretch);
+  stepLag(s, sigma, frame, target, c.steady, travel / stretch);
   c.lag = limit > 0.0 ? lag_.lag() / limit : 0.0;
   if (!(c.lag <= 0.5 * target))
     c.steady = false;
+  last_check_ = c;
+  have_check_ = true;
   return c;
 }
 

@@ -634,19 +634,25 @@ void BrushTransient::correctRows(const ContactKinematics& kin, bool held, double
     const double scale = peakFactor(p_.pressure) / boost::math::double_constants::pi;  // -> fractions of mu F_z
     const double tolerance = 0.05 / (static_cast<double>(p_.resolution) * p_.resolution);
     // within what the work budget leaves after the lattice's own steps (its estimate carries what it could not meet)
+    // (as much as the last evaluation took a row, or kMinRowsWork: the budget is not spent on rows it cannot finish)
     const long left = work_budget_ - work_ - static_cast<long>(w_) * w_ * kPointWork;
-    if (left < kMinRowsWork * w_)
+    if (left < std::max(kMinRowsWork, rows_work_per_row_) * w_)
     {
-      rows_phi_ = NAN;  // not even a row each: no correction this time (the streaks' bound says what is missed)
+      rows_phi_ = NAN;  // no correction this time (the streaks' bound says what is missed)
       return;
     }
     rows_ = evaluateSteadyRows(field, y_first, spacing, w_, tolerance / scale, std::min(BrushSteady::kMaxWork, left));
     work_ += rows_.work;
-    if (!rows_.complete)
+    if (!rows_.complete || !rows_.converged)
     {
-      rows_phi_ = NAN;  // the budget could not buy every row: no correction (the streaks' bound says what is missed)
+      // the budget could not buy every row, or the field's integral to its tolerance: no correction (an unconverged
+      // integral would correct by its own error; the streaks' bound says what is missed), and more asked of the budget
+      // before the next try
+      rows_phi_ = NAN;
+      rows_work_per_row_ = std::max(rows_work_per_row_, 2 * rows_.work / w_ + 1);
       return;
     }
+    rows_work_per_row_ = rows_.work / w_;
     rows_sigma_ = sigma;
     rows_phi_ = s.phi;
     rows_params_ = p_;

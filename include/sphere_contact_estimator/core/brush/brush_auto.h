@@ -90,6 +90,10 @@ private:
   };
   SteadyCheck checkSteady(const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame, double dt,
                           double target);
+  SteadyCheck last_check_;   // the last evaluated check, and the travel since (in the transient model)
+  bool have_check_ = false;
+  double lag_travel_ = 0.0;
+  static constexpr double kLagStride = 0.25;  // of the patch radius: how far the transient rolls between lag checks
   void chooseFamily(const ContactKinematics& kin, const Slips& s, double dt, const SteadyCheck& check);
   BrushForces transientAnswer(const ContactKinematics& kin, const Slips& s, double dt, double target, int& resolution);
   void carryAcrossSwitches(BrushForces& out, const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame,

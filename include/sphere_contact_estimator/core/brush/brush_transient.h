@@ -189,6 +189,7 @@ private:
   double rows_load_[3] = {};       // the rows' exact integrals of q_z [N] (all rows, even, odd)
   BrushParameters rows_params_;    // the parameters rows_ was evaluated with
   double rows_weight_ = 0.0;       // share of the correction in force: the share of a transit rolled since reset
+  long rows_work_per_row_ = 0;     // what the last complete evaluation took a row
   ContactKinematics last_kin_;     // the inputs of the last update, and how far the patch rolled under them
   bool have_last_kin_ = false;
   double held_travel_ = 0.0;

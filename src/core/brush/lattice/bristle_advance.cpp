@@ -294,7 +294,7 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
     const double pull = std::max(q0.w.norm(), q1.w.norm()) / std::max(b_min, 1e-300);
     ++steps;
     bool stiff = pull * d > 3.0;
-    double k[7], t[7];
+    double k[7], t[7], P[7], Q[7];  // P = w . e0, Q = e0 x w at the stages
     Point q[7];
     bool turned = false;
     const double un = s.u.norm(), w0n = q0.w.norm();
@@ -312,7 +312,9 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
         t[i] = ti;
         q[i] = i == 0 ? q0 : (i >= 5 ? q1 : at(p, tau + kC[i] * d));
         const double inv_b = q[i].b > 0.0 ? 1.0 / q[i].b : 0.0;
-        const double B = -q[i].w.dot(e0) * inv_b, A = 0.5 * (e0.x() * q[i].w.y() - e0.y() * q[i].w.x()) * inv_b;
+        P[i] = q[i].w.dot(e0);
+        Q[i] = e0.x() * q[i].w.y() - e0.y() * q[i].w.x();
+        const double B = -P[i] * inv_b, A = 0.5 * Q[i] * inv_b;
         k[i] = A + ti * (B - A * ti);
         turned = turned || !(std::abs(ti) <= 1.0);  // by more than a right angle within the step: too long a step
       }
@@ -320,7 +322,59 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
     }
     if (stiff)
     {
-      // stiff over this step: the return mapping's step doubling, its own step control
+      // Stiff over this step: in the drive's frame, delta = theta - arg w obeys delta' = -lambda sin delta - omega with
+      // lambda = |w| / b and omega = (w x w') / |w|^2 the drive's turn; T = tan(delta / 2) obeys
+      // T' = -lambda T - (omega / 2) (1 + T^2). The exponential step takes the decay exactly, e^{-Lambda} with Lambda
+      // the integral of lambda (Simpson), and the drive's turn implicitly at the end, where the kernel e^{-(Lambda(d) -
+      // Lambda(s))} holds its weight: T1 = e^{-Lambda} T0 - (1 - e^{-Lambda}) omega_1 / (2 lambda_1) (1 + T1^2), a
+      // quadratic. On the slow manifold that is its lag, delta ~ -omega / lambda. Its error: the same with the
+      // midpoint's omega / lambda, and Lambda's by the trapezoid's difference from Simpson's.
+      const Point qm = at(p, tau + 0.5 * d);
+      const double w0 = q0.w.norm(), wm = qm.w.norm(), w1 = q1.w.norm();
+      if (w0 > 0.0 && wm > 0.0 && w1 > 0.0 && q1.b > 0.0 && qm.b > 0.0)
+      {
+        const double l0 = w0 / std::max(q0.b, 1e-300), lm = wm / qm.b, l1 = w1 / q1.b;
+        const double om_m = (qm.w.x() * w_dot_.y() - qm.w.y() * w_dot_.x()) / (wm * wm);
+        const double om_1 = (q1.w.x() * w_dot_.y() - q1.w.y() * w_dot_.x()) / (w1 * w1);
+        // the start's angle from the drive
+        const Eigen::Vector2d h0 = q0.w / w0, h1 = q1.w / w1;
+        const double c0 = e0.dot(h0), s0 = h0.x() * e0.y() - h0.y() * e0.x();
+        const double Lambda = std::isfinite(l0) ? d / 6.0 * (l0 + 4.0 * lm + l1) : INFINITY;
+        const double Lambda_trap = std::isfinite(l0) ? d / 4.0 * (l0 + 2.0 * lm + l1) : INFINITY;
+        const double E = std::exp(-Lambda);
+        const double T0 = c0 > -1.0 ? s0 / (1.0 + c0) : INFINITY;
+        const auto solve = [&](double ratio, double& T1) {
+          const double kappa = (1.0 - E) * 0.5 * ratio, c = kappa - (std::isfinite(T0) ? E * T0 : 0.0);
+          const double disc = 1.0 - 4.0 * kappa * c;
+          if (!(disc >= 0.0) || !std::isfinite(T0))
+            return false;
+          T1 = -2.0 * c / (1.0 + std::sqrt(disc));
+          return true;
+        };
+        double T1, T1m;
+        if (c0 > 0.0 && solve(om_1 / l1, T1) && solve(om_m / lm, T1m) && std::abs(T1) <= 1.0)
+        {
+          const double error = 2.0 * q1.b * (std::abs(T1 - T1m) + E * std::abs(T0) * std::abs(Lambda - Lambda_trap));
+          const double T2 = T1 * T1, n = 1.0 / (1.0 + T2), cd = (1.0 - T2) * n, sd = 2.0 * T1 * n;
+          const Eigen::Vector2d e1(cd * h1.x() - sd * h1.y(), sd * h1.x() + cd * h1.y());
+          const bool pushed = w1 * cd - q1.b_dot >= 0.0 && wm * std::min(cd, 1.0) - qm.b_dot >= 0.0;
+          if (error <= tolerance_ && pushed)
+          {
+            s.step_error = s.step_error * std::min(1.0, q1.b / std::max(q0.b, 1e-300)) / (1.0 + Lambda) + error;
+            s.u = q1.b * e1;
+            tau += d;
+            step = error > 0.0 ? d * std::min(4.0, 0.9 * std::sqrt(tolerance_ / error)) : 4.0 * d;
+            continue;
+          }
+          if (pushed && d > 1e-9 * span)
+          {
+            step = d * std::max(0.2, 0.9 * std::sqrt(tolerance_ / error));
+            continue;
+          }
+        }
+      }
+      // else (no slow manifold, a re-adhesion in the step, or a drive through zero): the return mapping's step
+      // doubling, its own step control
       double error;
       bool slides;
       const Eigen::Vector2d u0 = s.u;
@@ -344,7 +398,7 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
     const double error = 2.0 * q1.b * std::abs(d * err_t);  // |d theta| <= 2 |d t|
     if ((turned || error > tolerance_) && d > 1e-9 * span)
     {
-      step = d * (turned ? 0.25 : std::max(0.2, 0.9 * std::pow(tolerance_ / error, 0.2)));
+      step = d * (turned ? 0.25 : std::max(0.2, 0.9 * std::sqrt(std::sqrt(tolerance_ / error))));
       continue;
     }
     // the direction at stage i: e0 turned by 2 atan(t_i)
@@ -353,11 +407,15 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
       const double c = (1.0 - ti * ti) * n, sn = 2.0 * ti * n;
       return Eigen::Vector2d(c * e0.x() - sn * e0.y(), sn * e0.x() + c * e0.y());
     };
-    // re-adhesion: the first stage (in time) where the bristle is no longer pushed outward
+    // re-adhesion: the first stage (in time) where the bristle is no longer pushed outward; with e at 2 atan(t) from e0,
+    // (1 + t^2) (w . e - db/dtau) = P (1 - t^2) + 2 Q t - (1 + t^2) db/dtau
     int first = -1;
     for (int i = 1; i < 7 && first < 0; ++i)
-      if (i != 5 && pushing(q[i], direction(t[i])) < 0.0)  // stage 6 and 7 lie at the step's end
+    {
+      const double t2 = t[i] * t[i];
+      if (i != 5 && P[i] * (1.0 - t2) + 2.0 * Q[i] * t[i] - (1.0 + t2) * q[i].b_dot < 0.0)  // stages 6, 7: the end
         first = i;
+    }
     if (first > 0)
     {
       // between the previous stage and that one, on the cubic Hermite interpolant of t over the step, by regula falsi
@@ -393,11 +451,13 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
       const double B = -qq.w.dot(e0) * inv_b, A = 0.5 * (e0.x() * qq.w.y() - e0.y() * qq.w.x()) * inv_b;
       return B - 2.0 * A * ti;
     };
-    const double growth = std::exp(std::min(0.0, d * std::max(slope(q0, 0.0), slope(q1, t[6])) ) );
+    // (1 / (1 + x) >= e^-x: never less than the decay)
+    const double growth = 1.0 / (1.0 + std::max(0.0, -d * std::max(slope(q0, 0.0), slope(q1, t[6]))));
     s.step_error = s.step_error * (q0.b > 0.0 ? std::min(1.0, q1.b / q0.b) : 1.0) * growth + error;
     s.u = q1.b * direction(t[6]);
     tau += d;
-    step = error > 0.0 ? d * std::min(5.0, 0.9 * std::pow(tolerance_ / error, 0.2)) : 5.0 * d;
+    // (the controller's exponent 1/4 rather than the pair's 1/5: no pow in the loop)
+    step = error > 0.0 ? d * std::min(5.0, 0.9 * std::sqrt(std::sqrt(tolerance_ / error))) : 5.0 * d;
   }
   return INFINITY;
 }
