@@ -141,6 +141,32 @@ BENCHMARK(BM_BrushTransientNoisyStep)
     ->ArgsProduct({ { 8, 12, 16, 24, 32, 48 }, { 0, 1 }, kLawArgs })
     ->ArgNames({ "resolution", "tilt", "law" });
 
+// One 10-ms message at 1 m/s with spin (issue 21's measure: a 100 Hz driver on the Fig. 4 parameters, partial sliding,
+// noise on the slips and the spin at every message), each bristle over the whole message (stepping 0) against the
+// lattice's half-spacing substeps (stepping 1), in one run.
+void BM_BrushTransientMessage(benchmark::State& state)
+{
+  sce::BrushTransient model(figure4(static_cast<int>(state.range(0)), false, lawArg(state.range(2))));
+  model.setStepping(state.range(1) == 0 ? sce::TransientStepping::WholeStep : sce::TransientStepping::Substeps);
+  model.update(kKinematics, 0.2);  // settle
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::vector<sce::ContactKinematics> steps;
+  for (int i = 0; i < 200; ++i)
+    steps.push_back(sce::ContactKinematics::fromSlips({ 0.05 + 0.005 * noise(rng), 0.02 + 0.005 * noise(rng) },
+                                                      3.33 + 0.1 * noise(rng), 0.9, 1.0));
+  std::size_t i = 0;
+  for (auto _ : state)
+  {
+    benchmark::DoNotOptimize(model.update(steps[i], 0.01));
+    i = (i + 1) % steps.size();
+  }
+}
+BENCHMARK(BM_BrushTransientMessage)
+    ->ArgsProduct({ { 32, 64, 128 }, { 0, 1 }, kLawArgs })
+    ->ArgNames({ "resolution", "stepping", "law" })
+    ->Unit(benchmark::kMicrosecond);
+
 // The forces' covariance from the slips' (the unscented transform through the steady model), against one steady
 // evaluation at the tolerance the sigma points use, on the Fig. 4 parameters (partial sliding with spin) and on the
 // demo robot (config/contact_estimator.yaml: a = 1 cm, k = 2e8, F_z = 49 N, mu = 0.8) at the demo bag's slips and

@@ -509,6 +509,57 @@ double elasticEnergy(const BrushTransient& model)
   return e;
 }
 
+TEST(BrushTransient, WholeStepsAgreeWithSubstepsOnNoisyHistories)
+{
+  // Each bristle over the whole message along its path against the lattice's half-spacing substeps (two independent
+  // time integrations of the same lattice), without tilt, on seeded random points of the envelope with noisy histories
+  // of 0.03-2.5 patch radii a message, some ending parked with spin: within the sum of the two estimates.
+  for (auto law : kSlidingLaws)
+  {
+    std::mt19937_64 rng(29);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::normal_distribution<double> g(0.0, 1.0);
+    int checked = 0, short_count = 0;
+    double worst = 0.0;
+    for (int h = 0; h < 40; ++h)
+    {
+      BrushParameters p = test::drawEnvelopeParameters(rng, h, law);
+      p.tilt = false;
+      p.resolution = 24;
+      const double scale = std::pow(10.0, -2.0 * u(rng));
+      const Eigen::Vector2d base = scale * Eigen::Vector2d(0.3 * (2.0 * u(rng) - 1.0), 0.1 * (2.0 * u(rng) - 1.0));
+      const double a_phi = scale * (2.0 * u(rng) - 1.0), noise = std::pow(10.0, -3.0 + 2.0 * u(rng));
+      const double dt = std::pow(10.0, -1.5 + 1.9 * u(rng)) * p.a;  // at V_r = 1 m/s
+      const bool parked = u(rng) < 0.3;
+      BrushTransient whole(p), substeps(p);
+      substeps.setStepping(TransientStepping::Substeps);
+      for (int m = 0; m < 24; ++m)
+      {
+        ContactKinematics k;
+        if (parked && m >= 16)
+        {
+          k.V_r = 0.01 * Eigen::Vector2d(g(rng), g(rng));
+          k.V_s = noise * Eigen::Vector2d(g(rng), g(rng));
+          k.omega_z = k.psi_dot = (a_phi + noise * g(rng)) / p.a;
+        }
+        else
+          k = ContactKinematics::fromSlips(base + noise * Eigen::Vector2d(g(rng), 0.3 * g(rng)),
+                                           (a_phi + noise * g(rng)) / p.a, 1.0, 1.0);
+        const BrushForces a = whole.update(k, m == 0 ? 0.0 : dt), b = substeps.update(k, m == 0 ? 0.0 : dt);
+        if (m < 12)
+          continue;
+        const double ratio = forceDistance(a, b, p) / (a.error_estimate + b.error_estimate + 1e-300);
+        ++checked;
+        short_count += ratio > 1.0;
+        worst = std::max(worst, ratio);
+      }
+    }
+    std::printf("%s law: whole steps against substeps, difference / estimates at most %.2f, beyond at %d of %d\n",
+                toString(law), worst, short_count, checked);
+    EXPECT_EQ(short_count, 0) << toString(law) << " worst " << worst;
+  }
+}
+
 TEST(BrushTransient, ThePatchNeverGivesEnergyBack)
 {
   // Passivity: from any state, a step with limited friction stores no more elastic energy than the same step without

@@ -254,7 +254,7 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   work_ = 0;
   BrushForces f;
   bool short_of_work = false;
-  if (dt > 0.0 && !p_.tilt)
+  if (dt > 0.0 && !p_.tilt && stepping_ == TransientStepping::WholeStep)
   {
     if (!advanceWhole(kin, dt))
       f.flags |= brush_flags::kSubstepsTruncated;
@@ -323,7 +323,7 @@ int BrushTransient::substeps(const ContactKinematics& kin, double dt) const
 
 long BrushTransient::predictWork(const ContactKinematics& kin, double dt) const
 {
-  if (!p_.tilt)
+  if (!p_.tilt && stepping_ == TransientStepping::WholeStep)
   {
     // the closed forms of every bristle, the sums, and as many sliding steps per travel as the last update took (a
     // bristle's steps end with its path: no more than a transit's)

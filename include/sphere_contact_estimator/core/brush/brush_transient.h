@@ -16,6 +16,15 @@ namespace sphere_contact_estimator
 {
 class FrictionCap;
 
+/// How BrushTransient advances its bristles without tilt: each over the whole update along its path (the default), or
+/// all of them by half a lattice spacing per substep (the lattice's first scheme, which tilt still uses; kept to compare
+/// against in one run).
+enum class TransientStepping
+{
+  WholeStep,
+  Substeps
+};
+
 /// The brush PDE in the time domain (Romano et al. eq. 1 with v_s = 0 where the bristle adheres):
 ///   du/dt + (v_t . grad) u = -V_s - A_omega_z x [- A_psi_dot u],   v_t = -V_r [- A_omega_gamma x]
 /// (the bracketed terms with tilt on: the velocity field of eq. 31, where A_omega_gamma = -chi_gamma A_omega_z
@@ -100,6 +109,9 @@ public:
   /// next substep applies the new bound. Returns true when the state had to be reset.
   bool setParameters(const BrushParameters& parameters);
 
+  void setStepping(TransientStepping stepping) { stepping_ = stepping; }
+  TransientStepping stepping() const { return stepping_; }
+
   /// Visits every bristle inside the patch: f(position x [m], deflection u [m], sliding).
   template <class F>
   void forEachBristle(F&& f) const
@@ -157,6 +169,7 @@ private:
   Eigen::Vector3d rowCorrection(int k) const;
   int rowSet(int k) const;
 
+  TransientStepping stepping_ = TransientStepping::WholeStep;
   long work_ = 0;                 // of the update under way
   int substeps(const ContactKinematics& kin, double dt) const;  // how many the step takes
   double h_;                      // lattice spacing
