@@ -139,7 +139,7 @@ void BrushTransient::rotateFrame(double alpha)
   }
   held_travel_ = 0.0;
   have_last_kin_ = false;
-  rows_phi_ = NAN;
+  rows_.invalidate();
   const Eigen::Matrix2d Q = rotation(-alpha);  // components in axes turned by alpha
   R_ = Q * R_;
   o_ = Q * o_;
@@ -220,8 +220,7 @@ bool BrushTransient::coarsen()
     v->resize(size);
   for (auto* v : { &slip_travel_scratch_, &step_error_scratch_ })
     v->resize(size);
-  rows_phi_ = NAN;  // the rows moved: the control variate is evaluated again
-  rows_active_ = false;
+  rows_.reset();  // the rows moved: the control variate is evaluated again
   recentre();
   return true;
 }
@@ -240,8 +239,7 @@ void BrushTransient::reset()
   have_last_kin_ = false;
   held_travel_ = 0.0;
   fill_travel_ = 0.0;
-  rows_active_ = false;
-  rows_phi_ = NAN;
+  rows_.reset();
   const double a2 = p_.a * p_.a;
   for (int j = 0; j < w_; ++j)
     for (int i = 0; i < w_; ++i)
@@ -285,13 +283,13 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   fill_travel_ += travel;
   last_kin_ = kin;
   have_last_kin_ = true;
-  correctRows(kin, held, travel);
+  const Slips slips = computeSlips(kin, p_.standstill_speed);
+  // the rows' correction within what the work budget leaves after the lattice's steps and the sums
+  work_ += rows_.update(p_, slips, { R_, position(0, 0), h_, w_ }, held, travel, fill_travel_,
+                        work_budget_ - work_ - static_cast<long>(w_) * w_ * kPointWork);
   // the rows' correction holds the streaks once every bristle in the patch entered under the inputs it is of
-  const Slips now = computeSlips(kin, p_.standstill_speed);
-  const bool corrected = rows_active_ && held_travel_ >= 2.0 * p_.a && now.defined &&
-                         rows_phi_ == now.phi && rows_sigma_ == RollingFrame(now.epsilon).toRolling(now.sigma) &&
-                         rows_params_ == p_;
-  streak_estimate_ = corrected ? 0.0 : streakBound(kin);
+  const bool corrected = held_travel_ >= 2.0 * p_.a && rows_.of(slips, p_);
+  streak_estimate_ = corrected ? 0.0 : streakBound(slips);
   const BrushForces g = forces();
   f.F_x = g.F_x;
   f.F_y = g.F_y;
@@ -569,14 +567,13 @@ void BrushTransient::coulombStep(const ContactKinematics& kin, const FrictionCap
   sliding_[p] = r.sliding;
 }
 
-double BrushTransient::streakBound(const ContactKinematics& kin) const
+double BrushTransient::streakBound(const Slips& s) const
 {
   // A stretch of G (where sliding bristles re-adhere) narrower than a few lattice rows anchors a streak the
   // rows may all miss. Its force is bounded by |u - f w/|w|| <= 2 f over its width times the longest path
   // (pi in units of a), the field's units: 2 pi width (q_z(0) / (F_z / pi a^2)) / pi of mu F_z.
   if (p_.sliding_law == SlidingLaw::Coulomb)
     return 0.0;  // eq. (4b)'s field is continuous across the paths: no streaks of re-adhered bristles
-  const Slips s = computeSlips(kin, p_.standstill_speed);
   BristleField field;
   if (!s.defined || (p_.tilt && std::abs(s.phi_gamma) * p_.a > 1.0))
     return 0.0;
@@ -592,118 +589,6 @@ double BrushTransient::streakBound(const ContactKinematics& kin) const
       bound += 2.0 * peakFactor(p_.pressure) * width;
   }
   return bound;
-}
-
-void BrushTransient::correctRows(const ContactKinematics& kin, bool held, double travel)
-{
-  rows_active_ = false;
-  if (p_.tilt)
-    return;  // the paths are arcs about the tilting centre, not the lattice's rows
-  const Slips s = computeSlips(kin, p_.standstill_speed);
-  if (!s.defined)
-    return;  // no steady field at standstill
-  const RollingFrame frame(s.epsilon);
-  // the rows follow the rolling direction when it lies along a lattice axis
-  const Eigen::Vector2d along = R_.transpose() * frame.toPatch(Eigen::Vector2d(1.0, 0.0));
-  int axis;
-  if (std::abs(along.y()) <= 1e-12)
-    axis = 0;
-  else if (std::abs(along.x()) <= 1e-12)
-    axis = 1;
-  else
-    return;
-  // the rows' place across the patch, in the rolling frame and units of a
-  const double y_first = frame.toRolling(position(0, 0)).y() / p_.a;
-  const double spacing = frame.toRolling(R_ * (axis == 0 ? Eigen::Vector2d(0.0, h_) : Eigen::Vector2d(h_, 0.0))).y() / p_.a;
-  const Eigen::Vector2d sigma = frame.toRolling(s.sigma);
-  const bool same = sigma == rows_sigma_ && s.phi == rows_phi_ && rows_params_ == p_;
-  const bool moved = !(std::abs(y_first - rows_y_first_) <= 1e-12 && std::abs(spacing - rows_spacing_) <= 1e-12) ||
-                     frame.toPatch(Eigen::Vector2d(1.0, 0.0)) != Eigen::Vector2d(rows_c_, rows_s_);
-  rows_travel_ += travel;
-  // re-evaluated where it moved; for other inputs or parameters only in a step that rolls (not at a duplicate stamp
-  // after a retune: no jump), once they held over it or a patch radius was rolled since
-  if (moved || (!same && travel > 0.0 && (held || rows_travel_ >= p_.a)))
-  {
-    BristleField field;
-    if (!makeBristleField(p_, { sigma.x(), sigma.y() }, s.phi, 0.0, 0.0, field))
-    {
-      rows_phi_ = NAN;
-      return;  // no load or no friction: no force to correct
-    }
-    // a twentieth of the lattice's error scale (about 1 / n^2 of mu F_z at resolution n, docs/benchmarks.md)
-    const double scale = peakFactor(p_.pressure) / boost::math::double_constants::pi;  // -> fractions of mu F_z
-    const double tolerance = 0.05 / (static_cast<double>(p_.resolution) * p_.resolution);
-    // within what the work budget leaves after the lattice's own steps (its estimate carries what it could not meet)
-    // (as much as the last evaluation took a row, or kMinRowsWork: the budget is not spent on rows it cannot finish)
-    const long left = work_budget_ - work_ - static_cast<long>(w_) * w_ * kPointWork;
-    if (left < std::max(kMinRowsWork, rows_work_per_row_) * w_)
-    {
-      rows_phi_ = NAN;  // no correction this time (the streaks' bound says what is missed)
-      return;
-    }
-    rows_ = evaluateSteadyRows(field, y_first, spacing, w_, tolerance / scale, std::min(BrushSteady::kMaxWork, left));
-    work_ += rows_.work;
-    if (!rows_.complete || !rows_.converged)
-    {
-      // the budget could not buy every row, or the field's integral to its tolerance: no correction (an unconverged
-      // integral would correct by its own error; the streaks' bound says what is missed), and more asked of the budget
-      // before the next try
-      rows_phi_ = NAN;
-      rows_work_per_row_ = std::max(rows_work_per_row_, 2 * rows_.work / w_ + 1);
-      return;
-    }
-    rows_work_per_row_ = rows_.work / w_;
-    rows_sigma_ = sigma;
-    rows_phi_ = s.phi;
-    rows_params_ = p_;
-    rows_y_first_ = y_first;
-    rows_spacing_ = spacing;
-    const Eigen::Vector2d e = frame.toPatch(Eigen::Vector2d(1.0, 0.0));
-    rows_c_ = e.x();
-    rows_s_ = e.y();
-    rows_scale_ = p_.mu * p_.F_z * scale;
-    rows_travel_ = 0.0;
-  }
-  if (std::isnan(rows_phi_))
-    return;
-  // the same rows' exact integrals of q_z [N] (the strip of width spacing along the chord at y0), always of the
-  // current parameters: the lattice's normalisation
-  const double q0_a2 = peakFactor(p_.pressure) * p_.F_z / boost::math::double_constants::pi;  // q_z(0) a^2
-  std::fill(std::begin(rows_load_), std::end(rows_load_), 0.0);
-  for (int r = 0; r < w_; ++r)
-  {
-    const double y0 = y_first + r * spacing, c2 = 1.0 - y0 * y0;
-    if (!(c2 > 0.0))
-      continue;
-    const double strip = PressureLaw(p_.pressure).chordIntegral(std::sqrt(c2));  // of q_z / q_z(0), units of a
-    rows_load_[0] += q0_a2 * std::abs(spacing) * strip;
-    rows_load_[1 + (r & 1)] += 2.0 * q0_a2 * std::abs(spacing) * strip;
-  }
-  // The correction is for the steady field; a lattice that has not yet rolled a transit holds mostly nothing (or the
-  // state it was reset to), where it would only add that field's quadrature error: it enters in proportion to the
-  // share of the longest path rolled since the lattice started, so that an empty patch gives exactly nothing and the
-  // forces stay continuous.
-  rows_weight_ = std::min(1.0, fill_travel_ / (2.0 * p_.a));
-  row_axis_ = axis;
-  rows_active_ = true;
-}
-
-int BrushTransient::rowSet(int k) const
-{
-  return k == 0 ? 0 : 1 + (row_axis_ == 0 ? ((k - 1) >> 1) & 1 : (k - 1) & 1);
-}
-
-Eigen::Vector3d BrushTransient::rowCorrection(int k) const
-{
-  if (!rows_active_)
-    return Eigen::Vector3d::Zero();
-  const int r = rowSet(k);  // the rows the sum runs over: all, or those of one parity
-  const std::complex<double> F = rows_.integral_force - rows_.rows_force[r];
-  const double M = rows_.integral_moment - rows_.rows_moment[r];
-  // rolling frame -> patch frame
-  const double scale = rows_weight_ * rows_scale_;
-  const double F_x = scale * F.real(), F_y = scale * F.imag();
-  return { rows_c_ * F_x - rows_s_ * F_y, rows_s_ * F_x + rows_c_ * F_y, scale * p_.a * M };
 }
 
 void BrushTransient::recentre()
@@ -737,6 +622,55 @@ void BrushTransient::recentre()
   o_ += R_ * Eigen::Vector2d(di * h_, dj * h_);
 }
 
+BrushTransient::Motion BrushTransient::motionAt(const Eigen::Vector2d& x) const
+{
+  // along this bristle's motion: how far the patch edge lies ahead and behind, and which lattice neighbour is upstream
+  // (the lattice axis nearest the motion)
+  Motion m;
+  const Eigen::Vector2d v = Eigen::Vector2d(-omega_gamma_ * x.y(), omega_gamma_ * x.x()) - V_r_;
+  if (v.squaredNorm() > 0.0)
+  {
+    const Eigen::Vector2d e = v.normalized();
+    const double b = x.dot(e), c = x.squaredNorm() - p_.a * p_.a, root = std::sqrt(std::max(0.0, b * b - c));
+    m.ahead = -b + root;
+    m.behind = b + root;
+    const Eigen::Vector2d l = R_.transpose() * e;  // the motion in lattice axes
+    if (std::abs(l.x()) >= std::abs(l.y()))
+      m.di = l.x() > 0.0 ? -1 : 1;
+    else
+      m.dj = l.y() > 0.0 ? -1 : 1;
+  }
+  return m;
+}
+
+Eigen::Vector2d BrushTransient::cellSum(int i, int j, const Motion& m, int k, double& weight) const
+{
+  // the cell, a strip of length h along the motion (2h on a sub-lattice): the part past the edge (or short of it), and
+  // the part upstream of the onset of sliding, which still holds the deflection before the jump
+  const std::size_t p = index(i, j);
+  const Eigen::Vector2d& u = u_[p];
+  const bool slides = sliding_[p];
+  const double h = k == 0 ? h_ : 2.0 * h_;
+  weight = 1.0;
+  if (m.ahead <= h)
+    weight += m.ahead / h - 0.5;
+  if (m.behind <= h)
+    weight += m.behind / h - 0.5;
+  Eigen::Vector2d cell = weight * u;
+  // a jump in space (not in time, as at standstill): the upstream neighbour on this lattice still adheres
+  const int step = k == 0 ? 1 : 2, ui = i + step * m.di, uj = j + step * m.dj;
+  if (slides && slip_travel_[p] < h && (m.di != 0 || m.dj != 0) && ui >= 0 && uj >= 0 && ui < w_ && uj < w_ &&
+      inside_[index(ui, uj)] && !sliding_[index(ui, uj)])
+    cell += (0.5 - slip_travel_[p] / h) * jump_[p];
+  // the first cell from the leading edge, sliding: between its onset and the edge the bristle adhered, growing from 0
+  // to the deflection before the jump, u + jump (half of it on average) instead of u. Unresolved, that ramp was a
+  // first-order error where the adhesion zone is shorter than a spacing (stiff bristles; with the uniform pressure the
+  // bound does not vanish at the edge: 0.1 % of mu F_z at resolution 128)
+  else if (slides && m.behind <= h && slip_travel_[p] < m.behind)
+    cell += (m.behind - slip_travel_[p]) / h * 0.5 * (jump_[p] - u);
+  return cell;
+}
+
 BrushForces BrushTransient::forces() const
 {
   // The lattice sum, and the same over each of the four sub-lattices of twice the spacing (the parities of
@@ -766,46 +700,11 @@ BrushForces BrushTransient::forces() const
       const double q_z = cap.qz(x.squaredNorm());
       const double bound = p_.mu * q_z / p_.k;
       utilisation = std::max(utilisation, slides ? 1.0 : (bound > 0.0 ? u.norm() / bound : 0.0));
-      // along this bristle's motion: how far the patch edge lies ahead and behind, and which lattice neighbour is
-      // upstream (the lattice axis nearest the motion)
-      const Eigen::Vector2d v = Eigen::Vector2d(-omega_gamma_ * x.y(), omega_gamma_ * x.x()) - V_r_;
-      double ahead = INFINITY, behind = INFINITY;
-      int di = 0, dj = 0;
-      if (v.squaredNorm() > 0.0)
-      {
-        const Eigen::Vector2d e = v.normalized();
-        const double b = x.dot(e), c = x.squaredNorm() - p_.a * p_.a, root = std::sqrt(std::max(0.0, b * b - c));
-        ahead = -b + root;
-        behind = b + root;
-        const Eigen::Vector2d l = R_.transpose() * e;  // the motion in lattice axes
-        if (std::abs(l.x()) >= std::abs(l.y()))
-          di = l.x() > 0.0 ? -1 : 1;
-        else
-          dj = l.y() > 0.0 ? -1 : 1;
-      }
+      const Motion motion = motionAt(x);
       for (int k : { 0, 1 + (i & 1) + 2 * (j & 1) })
       {
-        // the cell, a strip of length h along the motion (2h on a sub-lattice): the part past the edge (or short
-        // of it), and the part upstream of the onset of sliding, which still holds the deflection before the jump
-        const double h = k == 0 ? h_ : 2.0 * h_;
-        Eigen::Vector2d cell = u;
-        double weight = 1.0;
-        if (ahead <= h)
-          weight += ahead / h - 0.5;
-        if (behind <= h)
-          weight += behind / h - 0.5;
-        cell *= weight;
-        // a jump in space (not in time, as at standstill): the upstream neighbour on this lattice still adheres
-        const int step = k == 0 ? 1 : 2, ui = i + step * di, uj = j + step * dj;
-        if (slides && slip_travel_[p] < h && (di != 0 || dj != 0) && ui >= 0 && uj >= 0 && ui < w_ && uj < w_ &&
-            inside_[index(ui, uj)] && !sliding_[index(ui, uj)])
-          cell += (0.5 - slip_travel_[p] / h) * jump_[p];
-        // the first cell from the leading edge, sliding: between its onset and the edge the bristle adhered, growing
-        // from 0 to the deflection before the jump, u + jump (half of it on average) instead of u. Unresolved, that
-        // ramp was a first-order error where the adhesion zone is shorter than a spacing (stiff bristles; with the
-        // uniform pressure the bound does not vanish at the edge: 0.1 % of mu F_z at resolution 128)
-        else if (slides && behind <= h && slip_travel_[p] < behind)
-          cell += (behind - slip_travel_[p]) / h * 0.5 * (jump_[p] - u);
+        double weight;
+        const Eigen::Vector2d cell = cellSum(i, j, motion, k, weight);
         F[k] += cell;
         M_z[k] += x.x() * cell.y() - x.y() * cell.x();
         load[k] += weight * q_z;
@@ -817,13 +716,13 @@ BrushForces BrushTransient::forces() const
   if (count[0] == 0)
     return f;
   // Cell weight normalised so that the lattice sum of q_z is F_z: every bristle obeys |q| <= mu q_z, so
-  // |F_t| <= mu F_z then holds exactly. Where the rows are corrected across (rowCorrection), the sum of q_z is
+  // |F_t| <= mu F_z then holds exactly. Where the rows are corrected across (TransientRows), the sum of q_z is
   // normalised to the same rows' exact integrals of q_z instead: the normalisation then corrects the cells along the
   // rows (cut by the edge) and leaves across them to the correction, which would otherwise count the midpoint rule's
   // error across the rows twice (0.1 % of mu F_z at resolution 128 with the uniform pressure). Without load, the
   // patch area over the bristle count.
   const auto weight = [&](int k) {
-    const double total = rows_active_ ? rows_weight_ * rows_load_[rowSet(k)] + (1.0 - rows_weight_) * p_.F_z : p_.F_z;
+    const double total = rows_.load(k, p_.F_z);
     return load[k] > 0.0 ? total / load[k] : boost::math::double_constants::pi * p_.a * p_.a / std::max(count[k], 1);
   };
   const auto sum = [&](int k) {
@@ -832,7 +731,7 @@ BrushForces BrushTransient::forces() const
     g.F_x = p_.k * F[k].x() * dA;
     g.F_y = p_.k * F[k].y() * dA;
     g.M_z = p_.k * M_z[k] * dA;
-    const Eigen::Vector3d c = rowCorrection(k);
+    const Eigen::Vector3d c = rows_.correction(k, p_.a);
     g.F_x += c.x();
     g.F_y += c.y();
     g.M_z += c.z();
@@ -856,9 +755,7 @@ BrushForces BrushTransient::forces() const
   f.error_estimate = streak_estimate_;
   if (scale > 0.0)
     f.error_estimate += p_.k * step_error * weight(0) / scale;
-  if (rows_active_)
-    f.error_estimate += rows_weight_ * (rows_.integral_error + rows_.rows_error) * peakFactor(p_.pressure) /
-                        boost::math::double_constants::pi;
+  f.error_estimate += rows_.error(p_.pressure);
   const double fixed = f.error_estimate;
   if (scale > 0.0)
     for (int k = 1; k <= 4; ++k)

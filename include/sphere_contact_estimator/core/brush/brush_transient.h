@@ -10,7 +10,7 @@
 // Package
 #include "sphere_contact_estimator/core/brush/brush_model.h"
 #include "sphere_contact_estimator/core/brush/contact_kinematics.h"
-#include "sphere_contact_estimator/core/brush/steady_rows.h"
+#include "sphere_contact_estimator/core/brush/transient_rows.h"
 
 namespace sphere_contact_estimator
 {
@@ -35,10 +35,15 @@ enum class TransientStepping
 /// Discretisation: the bristles are followed as material points. v_t is a rigid motion (a translation,
 /// or a rotation about the tilting centre), so bristles that start on a square lattice of spacing
 /// h = 2a / resolution stay on one, moved rigidly: advection is exact, with no numerical diffusion and
-/// no stability limit. Each bristle integrates its ODE with the exact rotation of the turn coupling and
-/// the midpoint value of the drive; it enters with u = 0 where it crosses the leading edge (eq. 8; the
-/// crossing time is interpolated within the substep) and is dropped when it leaves. Limited friction caps
-/// it after every substep (FrictionCap). Forces are the lattice sum of k u over the bristles inside the
+/// no stability limit. Without tilt each bristle is advanced over the whole update along its straight path
+/// (lattice/bristle_advance.h: adhesion in closed form, the onset of sliding and the rigid law's re-adhesion as roots
+/// of polynomials, eq. 4b's sliding direction by an explicit 5(4) pair or, where the pull is stiff, an exponential
+/// step, each to 0.05 / resolution^2 of the bound at the centre), entering with u = 0 where its path crosses the
+/// leading edge (eq. 8) and dropped when it leaves: the cost grows with the bristles (resolution^2), not with how far
+/// the patch rolls. With tilt (arcs about the tilting centre, the turn coupling) the update is taken in substeps that
+/// keep each bristle's path within half a lattice spacing and every rotation below 0.1 rad, at most kMaxSubsteps
+/// (flagged when that is short), each bristle with the exact rotation of the turn coupling and the midpoint value of
+/// the drive, capped after every substep (FrictionCap). Forces are the lattice sum of k u over the bristles inside the
 /// patch, with the cell weight normalised so that the lattice sum of q_z is F_z (then |F_t| <= mu F_z
 /// exactly). At the onset of sliding the deflection jumps onto the sliding field, and at the patch edge the
 /// field ends: a plain lattice sum across such a jump is first order, so each bristle records how far it has
@@ -49,16 +54,16 @@ enum class TransientStepping
 /// Without tilt, while the lattice rows follow the rolling direction (as they do unless the frame was turned with a
 /// bristle state in the patch), the rows are bristle paths and the sum across them is a midpoint rule: a re-adhering
 /// streak narrower than a spacing (where a spin pole lies in the front of the patch) is hit or missed. There the
-/// steady field of the inputs serves as a control variate (SteadyRows): the sum is corrected by the midpoint rule's
+/// steady field of the inputs serves as a control variate (TransientRows): the sum is corrected by the midpoint rule's
 /// error on that field, whose integral and row integrals are known exactly, so that at held inputs the streaks
 /// cancel and only the bristles' own integration error is left (second order, monotone at the example point of
 /// issue 11 and the Fig. 4 points, docs/benchmarks.md). The field is re-evaluated when the inputs were held for an
 /// update or have rolled a patch radius since (between, the last one is a control variate as good as any: the
 /// correction stays exact for whatever field it uses).
 ///
-/// A sliding bristle re-adheres where its path enters G (the bound grows faster along the motion than the drive
-/// pushes: docs/conventions.md), located within the substep in closed form; a sliding bristle that does not enter G
-/// is put on the bound along the sliding field.
+/// Under the rigid law a sliding bristle re-adheres where its path enters G (the bound grows faster along the motion
+/// than the drive pushes: docs/conventions.md), located in closed form; a sliding bristle that does not enter G is put
+/// on the bound along the sliding field.
 ///
 /// error_estimate: twice the largest change of the forces (F_x, F_y, M_z / a, a fraction of mu F_z) when the
 /// sum is taken over any of the four sub-lattices of twice the spacing instead (each with its own rows' correction);
@@ -67,10 +72,9 @@ enum class TransientStepping
 /// at random operating points. Plus the steady field's own error where it corrects the rows. Re-adhering streaks
 /// narrower than three spacings, which no lattice row may cross, add their largest possible force (streakBound),
 /// except where the rows' correction holds them: the inputs held for the longest path (every bristle in the patch
-/// entered under them).
-///
-/// update() advances by the caller's dt in substeps that keep each bristle's path within half a lattice
-/// spacing and every rotation below 0.1 rad; at most kMaxSubsteps of them (flagged when that is short).
+/// entered under them). Under eq. (4b), plus each bristle's time-step errors (carried, shrinking where the law pulls
+/// a direction error back), over its cell. Within a work budget, sliding steps beyond it are one return mapping each,
+/// with the bound 2 mu q_z / k as their error.
 class BrushTransient : public BrushModel
 {
 public:
@@ -131,8 +135,6 @@ public:
   static constexpr int kMaxSubsteps = 4096;
   /// The work of one lattice point in one substep (BrushForces::work units; measured: about 100 ns under eq. 4b).
   static constexpr long kPointWork = 10;
-  /// The rows' correction is evaluated only where the budget leaves this much work a row (a row's path and more).
-  static constexpr long kMinRowsWork = 400;
   /// Without tilt: the work of one lattice point's closed forms over a whole update, and of one sliding step under eq.
   /// (4b) (a step against two half steps).
   static constexpr long kBristleWork = 3;
@@ -162,12 +164,16 @@ private:
   void coulombStep(const ContactKinematics& kin, const FrictionCap& cap, double spin, std::size_t p,
                    const Eigen::Vector2d& x_start, const Eigen::Vector2d& x1, double t, bool was_sliding);
   void recentre();
-  double streakBound(const ContactKinematics& kin) const;
-  void correctRows(const ContactKinematics& kin, bool held, double travel);
-  // the rows' correction of sub-lattice k (0: the full lattice) in the patch frame [N, N, N m], and which rows
-  // that sum runs over (0: all; 1, 2: even, odd)
-  Eigen::Vector3d rowCorrection(int k) const;
-  int rowSet(int k) const;
+  double streakBound(const Slips& s) const;
+  // the sums' cells: along a bristle's motion, how far the patch edge lies ahead and behind and which neighbour is
+  // upstream; and its deflection over its cell on the lattice k (0) or sub-lattice k (1-4), with the cell's weight
+  struct Motion
+  {
+    double ahead = INFINITY, behind = INFINITY;
+    int di = 0, dj = 0;
+  };
+  Motion motionAt(const Eigen::Vector2d& x) const;
+  Eigen::Vector2d cellSum(int i, int j, const Motion& m, int k, double& weight) const;
 
   TransientStepping stepping_ = TransientStepping::WholeStep;
   long work_ = 0;                 // of the update under way
@@ -191,18 +197,7 @@ private:
   Eigen::Vector2d V_r_ = Eigen::Vector2d::Zero();
   double omega_gamma_ = 0.0;
   double streak_estimate_ = 0.0;  // streakBound of the last update's inputs
-  // the rows' control variate (no tilt, rows along the rolling direction)
-  bool rows_active_ = false;
-  int row_axis_ = 0;               // rows of constant j (motion along the lattice's x) or of constant i (along y)
-  SteadyRows rows_;                // of rows_sigma_, rows_phi_ at the rows' place rows_y_first_
-  Eigen::Vector2d rows_sigma_ = Eigen::Vector2d::Constant(NAN);
-  double rows_phi_ = NAN, rows_y_first_ = NAN, rows_spacing_ = NAN, rows_travel_ = 0.0;
-  double rows_c_ = 1.0, rows_s_ = 0.0;  // the rolling direction in the patch frame
-  double rows_scale_ = 0.0;        // dimensionless integrals -> [N]
-  double rows_load_[3] = {};       // the rows' exact integrals of q_z [N] (all rows, even, odd)
-  BrushParameters rows_params_;    // the parameters rows_ was evaluated with
-  double rows_weight_ = 0.0;       // share of the correction in force: the share of a transit rolled since reset
-  long rows_work_per_row_ = 0;     // what the last complete evaluation took a row
+  TransientRows rows_;             // the rows' control variate (no tilt, rows along the rolling direction)
   ContactKinematics last_kin_;     // the inputs of the last update, and how far the patch rolled under them
   bool have_last_kin_ = false;
   double held_travel_ = 0.0;
