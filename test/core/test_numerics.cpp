@@ -106,6 +106,22 @@ TEST(PolynomialRoots, ClusteredRootsAndWideScales)
   EXPECT_NEAR(roots[1], 3e-6, 1e-19);
 }
 
+TEST(PolynomialRoots, NeverWritesMoreRootsThanAsked)
+{
+  // A quadratic with two roots and a cubic with three, asked for one: the first only, and nothing past it
+  // (the quadratic's closed form once wrote its second root one past the caller's single double)
+  const std::vector<double> q = fromRoots(1.0, { 0.25, 0.5 }, {});
+  const std::vector<double> c = fromRoots(1.0, { -0.5, 0.25, 0.5 }, {});
+  for (const auto* p : { &q, &c })
+  {
+    double out[3] = { -7.0, -7.0, -7.0 };
+    ASSERT_EQ(signChanges(p->data(), static_cast<int>(p->size()) - 1, -1.0, 1.0, out, 1), 1);
+    EXPECT_NEAR(out[0], p == &q ? 0.25 : -0.5, 1e-14);
+    EXPECT_EQ(out[1], -7.0);
+    EXPECT_EQ(out[2], -7.0);
+  }
+}
+
 TEST(PolynomialRoots, TaylorSeriesOfHighDegree)
 {
   // As the path solver builds them: the series of cos(3 s) - 0.3 and of sin(5 s) e^(-s) - 0.1 to degree 30 about

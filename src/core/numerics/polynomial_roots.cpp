@@ -173,7 +173,13 @@ int quadraticRoots(double a, double b, double c, double lo, double hi, double* o
 int monotoneRoots(const double* c, int n, double lo, double hi, double* out, int max_out)
 {
   if (n <= 2)
-    return std::min(max_out, quadraticRoots(n == 2 ? c[2] : 0.0, n >= 1 ? c[1] : 0.0, c[0], lo, hi, out));
+  {
+    // the closed form finds up to two roots: into a buffer of its own, out may hold fewer
+    double q[2];
+    const int nq = std::min(max_out, quadraticRoots(n == 2 ? c[2] : 0.0, n >= 1 ? c[1] : 0.0, c[0], lo, hi, q));
+    std::copy(q, q + nq, out);
+    return nq;
+  }
   double d[kLowDegree];
   for (int i = 1; i <= n; ++i)
     d[i - 1] = i * c[i];
