@@ -165,7 +165,7 @@ TEST(BrushAuto, AlongTheDemoManoeuvre)
   double worst = 0.0, worst_jump = 0.0, transient_cost = 0.0, estimate_misses = 0;
   BrushForces previous, previous_ref;
   const std::vector<ContactKinematics> ks = demo(0.01, 0.1);
-  int transient_updates = 0;
+  int transient_updates = 0, finest = 0;
   for (std::size_t i = 0; i < ks.size(); ++i)
   {
     const BrushForces f = model.update(ks[i], i ? 0.01 : 0.0);
@@ -178,17 +178,21 @@ TEST(BrushAuto, AlongTheDemoManoeuvre)
     previous = f;
     previous_ref = g;
     transient_updates += model.lastModel() == BrushModelKind::Transient;
+    finest = std::max(finest, model.transientResolution());
   }
-  // always the transient model, at the resolution auto's own transient model needed for the target
-  const int n = model.transientResolution();
+  // always the transient model, at the finest resolution auto's own transient model took for the target
+  const int n = finest;
   for (const ContactKinematics& k : ks)
     transient_cost += BrushAuto::transientStepCost(n) * std::max(1.0, std::ceil(k.V_r.norm() * 0.01 / (p.a / n)));
   std::printf("demo manoeuvre: max error %.3g of mu F_z (target %.3g), largest jump beyond the reference's %.3g, "
-              "transient in %d of %zu updates (resolution %d at the end), cost %.3g of always-transient at that resolution, "
+              "transient in %d of %zu updates (resolution %d at the end, %d the finest), cost %.3g of always-transient at the finest, "
               "estimate short %g times\n",
-              worst, p.accuracy_target, worst_jump, transient_updates, ks.size(), model.transientResolution(),
+              worst, p.accuracy_target, worst_jump, transient_updates, ks.size(), model.transientResolution(), finest,
               model.cost() / transient_cost, estimate_misses);
   EXPECT_LE(worst, p.accuracy_target + 0.005);  // the reference at resolution 128 is itself ~0.2 % off
+  // the estimate with the reference's covers every message (the lag of a sliding state after the slip's step at the end
+  // of the acceleration once fell 1.5e-5 short, weighed by the linear theory's kernel: SteadyLag's comment)
+  EXPECT_EQ(estimate_misses, 0);
   EXPECT_LT(worst_jump, p.accuracy_target);
   EXPECT_GT(transient_updates, 0);             // standstill and braking need it
   EXPECT_LT(transient_updates, static_cast<int>(ks.size()));

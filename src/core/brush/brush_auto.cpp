@@ -38,7 +38,7 @@ double longestPath(const BrushParameters& p)
 }  // namespace
 
 BrushAuto::BrushAuto(const BrushParameters& parameters)
-  : BrushModel(parameters), linear_(parameters), steady_(parameters), lag_(2.0 * parameters.a)
+  : BrushModel(parameters), linear_(parameters), steady_(parameters), lag_(2.0 * parameters.a, parameters.pressure)
 {
   transient_resolution_ = configured_resolution_ = std::min(p_.resolution, kMaxTransientResolution);
   transient_ = std::make_unique<BrushTransient>(withResolution(p_, transient_resolution_));
@@ -179,8 +179,9 @@ void BrushAuto::enterTransient(const ContactKinematics& kin, double dt)
 {
   // Warm start: the bristles in the steady state of the last rolling inputs before this step (2.5 transits), so
   // the transient model takes over where the steady one was and then rolls this step under the new inputs; at
-  // the finer resolution asked for last time, or the finest whose warm start and step fit the work budget.
-  int resolution = std::max(transient_resolution_, pending_resolution_);
+  // the finer resolution asked for last time, else at least the configured one (a coarsening was for the inputs of the
+  // last visit, not these), or the finest whose warm start and step fit the work budget.
+  int resolution = std::max({ transient_resolution_, pending_resolution_, configured_resolution_ });
   pending_resolution_ = 0;
   const double V = have_rolling_ ? last_rolling_.V_r.norm() : 0.0;
   const double warm = have_rolling_ ? 2.5 * longestPath(p_) / V : 0.0;
@@ -288,7 +289,8 @@ BrushAuto::SteadyCheck BrushAuto::checkSteady(const Slips& s, const Eigen::Vecto
   // In the transient model the lag only decides when to leave it, which takes steady conditions held over a transit:
   // it is evaluated once the patch has rolled a quarter of its radius since the last time (the lag then takes the
   // changes and the travel since at once), not at every message of a fast stream.
-  if (in_transient_ && have_check_ && !c.renewed && lag_travel_ + s.V_r * dt < kLagStride * p_.a)
+  const double stride = have_check_ && last_check_.lag > kFarLag * 0.5 * target ? kFarLagStride : kLagStride;
+  if (in_transient_ && have_check_ && !c.renewed && lag_travel_ + s.V_r * dt < stride * p_.a)
   {
     lag_travel_ += s.V_r * dt;
     c.steady = c.steady && last_check_.steady;
@@ -352,7 +354,7 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
   transient_->setWorkBudget(remaining());
   BrushForces out = transient_->update(kin, dt);
   spent_ += out.work;
-  entry_error_ *= lag_.memory(s.V_r * dt / (0.5 * longestPath(p_) / p_.a));  // the slowest renewal
+  entry_error_ *= lag_.slowest(s.V_r * dt / (0.5 * longestPath(p_) / p_.a));  // the slowest renewal
   out.error_estimate += entry_error_;
   resolution = transient_resolution_;
   cost_ += transientStepCost(resolution) * std::max(1.0, std::ceil(s.V_r * dt / (p_.a / resolution)));

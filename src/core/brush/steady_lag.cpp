@@ -7,8 +7,48 @@
 // Boost
 #include <boost/math/constants/constants.hpp>
 
+// Package
+#include "sphere_contact_estimator/core/brush/pressure_law.h"
+#include "sphere_contact_estimator/core/numerics/quadrature_rules.h"
+
 namespace sphere_contact_estimator
 {
+SteadyLag::SteadyLag(double longest, PressureDistribution pressure) : a_(0.5 * longest)
+{
+  // The load on the disc (units of a) ahead of x = d - l(y) on every path, over the whole load: across the paths
+  // y = Y sin(phi) (Y where the chord 2l equals d), which smooths the ends where a chord just fits, by a 32-point
+  // Gauss rule on each of 4 panels (the table's values to about 1e-12, far inside the interval reading's margin)
+  const PressureLaw law(pressure);
+  const numerics::GaussLegendre& rule = numerics::gaussLegendre(32);
+  const auto load = [&](double d) {
+    const double Y = std::sqrt(std::max(0.0, 1.0 - 0.25 * d * d));
+    constexpr int kPanels = 4;
+    const double h = boost::math::double_constants::pi / kPanels;
+    double sum = 0.0;
+    for (int k = 0; k < kPanels; ++k)
+      for (int i = 0; i < rule.m; ++i)
+      {
+        const double phi = -0.5 * boost::math::double_constants::pi + h * (k + 0.5 * (rule.x[i] + 1.0));
+        const double y = Y * std::sin(phi), c = std::sqrt(std::max(0.0, 1.0 - y * y));
+        sum += 0.5 * h * rule.w[i] * Y * std::cos(phi) * law.chordIntegralAfter(c, d);
+      }
+    return sum;
+  };
+  const double total = load(0.0);
+  for (int k = 0; k <= kTable; ++k)
+    sliding_[k] = k == 0 ? 1.0 : std::clamp(load(2.0 * k / kTable) / total, 0.0, 1.0);
+}
+
+double SteadyLag::memorySliding(double delta) const
+{
+  const double d = delta / a_;
+  if (!(d > 0.0))
+    return 1.0;
+  if (d >= 2.0)
+    return 0.0;
+  return sliding_[static_cast<int>(d * (0.5 * kTable))];
+}
+
 double SteadyLag::memory(double delta) const
 {
   // Straight paths across the disc (units of a): a path at y runs 2l = 2 sqrt(1 - y^2) from the leading edge, a
@@ -139,9 +179,12 @@ double SteadyLag::lag() const
   {
     const Change& c = changes_[(first_ + i) % kCapacity];
     const double slow = memory(s_ - c.s), slip = memorySlip(s_ - c.s);
-    const double mixed = slip + c.spin_share * (slow - slip);  // F's kernel for a change of both drives
+    // F's kernel for a change of both drives; the steady model's changes (not split) at least the load's share, which
+    // a sliding state keeps (the class's comment)
+    const double sliding = memorySliding(s_ - c.s);
+    const double mixed = std::max(slip + c.spin_share * (slow - slip), sliding), slowest = std::max(slow, sliding);
     sum += Eigen::Vector3d(slip, slip, slow).cwiseProduct(c.slip) + Eigen::Vector3d(slow, slow, slip).cwiseProduct(c.spin) +
-           Eigen::Vector3d(mixed, mixed, slow).cwiseProduct(c.other);
+           Eigen::Vector3d(mixed, mixed, slowest).cwiseProduct(c.other);
   }
   return sum.cwiseAbs().maxCoeff();
 }

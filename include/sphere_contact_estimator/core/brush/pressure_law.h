@@ -105,6 +105,30 @@ public:
     return 0.0;
   }
 
+  /// The part of chordIntegral(c) from x = d - c to c: the load on a straight path's bristles that entered more than
+  /// a travel d ago (0 from d = 2c on).
+  double chordIntegralAfter(double c, double d) const
+  {
+    if (!(d < 2.0 * c))
+      return 0.0;
+    if (d <= 0.0)
+      return chordIntegral(c);
+    const double x0 = d - c;
+    switch (kind_)
+    {
+      case PressureDistribution::Parabolic:  // of c^2 - x^2
+        return c * c * (c - x0) - (c * c * c - x0 * x0 * x0) / 3.0;
+      case PressureDistribution::Hertzian:  // of sqrt(c^2 - x^2), x = c sin(theta)
+      {
+        const double s = x0 / c;
+        return 0.5 * c * c * (0.5 * M_PI - std::asin(s) - s * std::sqrt(1.0 - s * s));
+      }
+      case PressureDistribution::Uniform:
+        return c - x0;
+    }
+    return 0.0;
+  }
+
 private:
   PressureDistribution kind_;
 };

@@ -1,10 +1,14 @@
 #pragma once
 
 // STL
+#include <algorithm>
 #include <array>
 
 // Eigen
 #include <Eigen/Core>
+
+// Package
+#include "sphere_contact_estimator/core/brush/brush_parameters.h"
 
 namespace sphere_contact_estimator
 {
@@ -18,14 +22,19 @@ namespace sphere_contact_estimator
 /// of them is used for all, so the lag |sum_j dF_j g(s - s_j)| over the steady-state changes dF_j made at travel
 /// s_j bounds the true one for any mix of slip and spin changes (a spin ramp alone: exact). A ramp gives about
 /// 0.91 a |dF/ds| (the integral of g), slow inputs next to nothing, and a step longer than the patch nothing at all; noise
-/// makes large changes that the next steps soon renew. Sliding erases a bristle's memory sooner, so for the
-/// limited-friction models this overestimates the lag.
+/// makes large changes that the next steps soon renew. Under limited friction sliding caps the deflection of the rear
+/// bristles at the bound and so moves the force towards the leading edge, where it stays longest: a change of the
+/// slips from a partly sliding state keeps more than the linear theory's share, up to the share of the load on the
+/// bristles that entered more than delta ago (memorySliding, the fully sliding state's: along a path the sliding
+/// state's deflection over the linear one's grows towards the front, so the load's distribution dominates). Changes of
+/// the steady model (not split) weigh at least that.
 class SteadyLag
 {
 public:
   /// @param longest the longest straight bristle path through the patch, 2a [m] (Sect. 3). On the arcs of
   ///        Sect. 4 the caller shortens each step's travel by the arcs' stretch over their chords.
-  explicit SteadyLag(double longest) : a_(0.5 * longest) {}
+  /// @param pressure the pressure law whose load memorySliding follows
+  explicit SteadyLag(double longest, PressureDistribution pressure = PressureDistribution::Parabolic);
 
   /// The steady forces (F_x, F_y, M_z / a, any unit) of the inputs in force during a step that then rolled
   /// `travel` [m]: the parts the slips and the spin drive, when `split` (the linear theory, whose kernels forget at
@@ -52,9 +61,17 @@ public:
   /// change of the spin in F_y or of the lateral slip in M_z (memory).
   double memory(double delta) const;
   double memorySlip(double delta) const;
+  /// The share of the load q_z on bristles that entered more than delta [m] ago (straight paths), from a table of
+  /// kTable intervals read at the interval's start (the share falls with delta: never below it). For the parabolic
+  /// law it is memory(delta): the spin's linear drive deflects a bristle as the parabolic bound.
+  double memorySliding(double delta) const;
+  /// The slowest renewal of any state: max(memory, memorySliding).
+  double slowest(double delta) const { return std::max(memory(delta), memorySliding(delta)); }
 
 private:
   static constexpr int kCapacity = 256;  // changes kept: the oldest has the least weight and goes first
+  static constexpr int kTable = 512;     // intervals of memorySliding's table over delta in [0, 2a]
+  std::array<double, kTable + 1> sliding_{};
   double a_;  // half the longest path: the memory is that of a disc of this radius
   double s_ = 0.0;  // travel so far
   bool have_ = false;
