@@ -658,23 +658,24 @@ def streams_section(streams, node):
              " compute time and counted work, the model auto ran, whether it is flagged BRUSH_FLAG_ACCURACY_NOT_MET,"
              " and its error max(|ΔF_x|, |ΔF_y|, |ΔM_z|/a) / μF_z against a reference run of the same stream: the"
              " transient model at resolution %s without a work budget (its own error: its difference from resolution"
-             " %s, the last column). An unflagged message counts as over its target only beyond that difference."
+             " %s, the last column). An unflagged message counts as over its target only beyond that difference, and"
+             " an estimate (flagged or not) as below its error only where the error passes it and that difference."
              % (ref, ref // 2 if ref else "?"), ""]
     for s in streams.get("streams", []):
         a = s["all"]
         lines += ["### %s: %d messages at %.0f Hz" % (s["bag"], s["messages"], s["rate"] or 0.0), "",
                   "bag_analyze: %.1f× real time (%.2f s for %.1f s of odometry, the fastest of three runs)." % (
                       s["times_real_time"], s["bag_analyze_seconds"], s["duration"]), "",
-                  "| segment | messages | time p50 | p99 | max | work max | models (messages) | flagged | unflagged: largest error | over target | reference's own |",
-                  "|---|---|---|---|---|---|---|---|---|---|---|"]
+                  "| segment | messages | time p50 | p99 | max | work max | models (messages) | flagged | unflagged: largest error | over target | estimate below the error | reference's own |",
+                  "|---|---|---|---|---|---|---|---|---|---|---|---|"]
         rows = list(s["segments"].items()) + [("**all**", a)]
         for name, v in rows:
             t = v["time_us"]
             models = ", ".join("%s %d" % (k, n) for k, n in sorted(v["models"].items(), key=lambda kv: -kv[1]))
-            lines.append("| %s | %d | %s | %s | %s | %.0f | %s | %s | %s | %d | %s |" % (
+            lines.append("| %s | %d | %s | %s | %s | %.0f | %s | %s | %s | %d | %s | %s |" % (
                 name, v["messages"], fmt_us(t["p50"]), fmt_us(t["p99"]), fmt_us(t["max"]), v["work"]["max"], models,
                 fmt_share(v["flagged"], v["messages"]), fmt_err(v["unflagged_error_max"]) if v["unflagged_error_max"] is not None else "–",
-                v["unflagged_over_target"], fmt_err(v["reference_error_max"])))
+                v["unflagged_over_target"], v.get("estimate_short", "–"), fmt_err(v["reference_error_max"])))
         lines += ["", "Flagged because the target was missed within the work budget; of those, %d with the coarsest"
                   " lattice's substeps truncated by it. Targets: accuracy_target 1 %%, raised below the noise to a quarter"
                   " of the forces' spread (median %s)." % (a["flagged_substeps_truncated"], fmt_err(a["target_median"])), ""]

@@ -95,6 +95,10 @@ def summarise(rows):
     clean = [r for r in rows if not int(r["brush_flags"]) & FLAG_ACCURACY_NOT_MET]
     errors = [r["_error"] for r in clean]
     over = [r for r in clean if r["_error"] > float(r["brush_accuracy_target"]) + r["_reference_error"]]
+    # every estimate, flagged or not, must bound its error (with the reference's own estimate beside it)
+    short = [r for r in rows if r["_error"] > float(r["brush_error_estimate"]) + r["_reference_error"]]
+    worst_short = max(short, key=lambda r: r["_error"] / max(float(r["brush_error_estimate"]) + r["_reference_error"],
+                                                             1e-300), default=None)
     models = {}
     for r in rows:
         key = MODELS.get(r["brush_model_used"], r["brush_model_used"])
@@ -112,6 +116,10 @@ def summarise(rows):
         "unflagged_error_max": max(errors) if errors else None,
         "unflagged_error_p99": quantile(errors, 0.99),
         "unflagged_over_target": len(over),
+        "estimate_short": len(short),
+        "estimate_short_worst": None if worst_short is None else {
+            "stamp": float(worst_short["stamp"]), "error": worst_short["_error"],
+            "estimate": float(worst_short["brush_error_estimate"]), "reference_error": worst_short["_reference_error"]},
         "reference_error_max": max((r["_reference_error"] for r in rows), default=None),
         "target_median": quantile([float(r["brush_accuracy_target"]) for r in rows], 0.5),
     }
@@ -161,11 +169,12 @@ def main():
             out["streams"].append(stream)
             s = stream["all"]
             print("%s: %d messages at %.0f Hz; bag_analyze %.1fx real time; per message p50 %.0f us, p99 %.0f us, max %.0f us"
-                  " (work max %.0f); flagged %d (%.1f %%); unflagged: largest error %.2g, %d over the target"
+                  " (work max %.0f); flagged %d (%.1f %%); unflagged: largest error %.2g, %d over the target;"
+                  " estimate below the error at %d"
                   % (stream["bag"], len(rows), stream["rate"] or 0.0, stream["times_real_time"], s["time_us"]["p50"],
                      s["time_us"]["p99"], s["time_us"]["max"], s["work"]["max"], s["flagged"],
                      100.0 * s["flagged"] / max(1, len(rows)), s["unflagged_error_max"] or 0.0,
-                     s["unflagged_over_target"]), file=sys.stderr)
+                     s["unflagged_over_target"], s["estimate_short"]), file=sys.stderr)
     text = json.dumps(out, indent=1)
     if a.out:
         with open(a.out, "w") as f:
