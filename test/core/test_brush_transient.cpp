@@ -560,6 +560,70 @@ TEST(BrushTransient, WholeStepsAgreeWithSubstepsOnNoisyHistories)
   }
 }
 
+TEST(BrushTransient, OneLongUpdateIsAsAccurateAsItsEstimate)
+{
+  // An update that rolls three transits at once (a gap in the messages, a warm start), then short ones, at held inputs:
+  // every answer within its estimate of the steady solver's. Two points where a long sliding step once passed over a
+  // re-adhesion (soft bristles with spin: 1.3e-3 of mu F_z off against an estimate of 2.6e-4, for as long as the
+  // bristles remembered it; stiff ones ran out of steps), and seeded random points of the envelope, under both laws.
+  struct Held
+  {
+    BrushParameters p;
+    Eigen::Vector2d sigma;
+    double phi, chi;
+  };
+  std::vector<Held> points;
+  {
+    Held q;
+    q.p.pressure = PressureDistribution::Parabolic;
+    q.p.a = 0.05621487332751267, q.p.F_z = 181.32724513820312, q.p.mu = 0.5235709358150521, q.p.k = 4081523.4185242085;
+    q.sigma = { 0.13884614137970547, 0.04047948252099325 }, q.phi = -4.163254847079314, q.chi = 0.427726523421208;
+    points.push_back(q);
+    q.p.pressure = PressureDistribution::Hertzian;
+    q.p.a = 0.046281820501449064, q.p.F_z = 54.8216483014941, q.p.mu = 0.30614817502247993, q.p.k = 978964578.8578024;
+    q.sigma = { 0.021286472570293213, 0.005429991361654688 }, q.phi = 0.36966583248314516, q.chi = 1.4516694484901684;
+    points.push_back(q);
+  }
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 16; ++i)
+  {
+    Held q;
+    q.p = test::drawEnvelopeParameters(rng, i);
+    const double scale = std::pow(10.0, -1.5 * u(rng));
+    q.sigma = scale * Eigen::Vector2d(0.3 * (2.0 * u(rng) - 1.0), 0.1 * (2.0 * u(rng) - 1.0));
+    q.phi = scale * (2.0 * u(rng) - 1.0) / q.p.a;
+    q.chi = 2.0 * u(rng) - 0.5;
+    points.push_back(q);
+  }
+  for (auto law : kSlidingLaws)
+  {
+    int checked = 0, short_count = 0;
+    double worst = 0.0;
+    for (Held q : points)
+    {
+      q.p.tilt = false;
+      q.p.sliding_law = law;
+      q.p.resolution = 64;
+      const BrushForces ref = BrushSteady(q.p).evaluate(q.sigma, q.phi, 0.0, 0.0, 1e-7);
+      BrushTransient model(q.p);
+      const ContactKinematics k = ContactKinematics::fromSlips(q.sigma, q.phi, q.chi, 1.0);
+      model.update(k, 6.0 * q.p.a);  // V_r = 1 m/s
+      for (int m = 0; m < 8; ++m)
+      {
+        const BrushForces f = model.update(k, 2.0 * q.p.a / q.p.resolution / 8.0);
+        const double ratio = forceDistance(f, ref, q.p) / (f.error_estimate + ref.error_estimate + 1e-300);
+        ++checked;
+        short_count += ratio > 1.0;
+        worst = std::max(worst, ratio);
+      }
+    }
+    std::printf("%s law: one update of three transits, then short ones: error / estimate at most %.2f, beyond at %d of "
+                "%d\n", toString(law), worst, short_count, checked);
+    EXPECT_EQ(short_count, 0) << toString(law) << " worst " << worst;
+  }
+}
+
 TEST(BrushTransient, ThePatchNeverGivesEnergyBack)
 {
   // Passivity: from any state, a step with limited friction stores no more elastic energy than the same step without

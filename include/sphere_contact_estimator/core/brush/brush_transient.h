@@ -139,7 +139,9 @@ public:
   /// (4b) (a step against two half steps).
   static constexpr long kBristleWork = 3;
   static constexpr long kStepWork = 8;
-  static constexpr int kMaxBristleSteps = 256;
+  /// A bristle's sliding steps in one update (as many as the substeps' kMaxSubsteps): an update of three transits at
+  /// resolution 128 needs a few hundred where the bristles are stiff; auto's budget bounds them far sooner
+  static constexpr int kMaxBristleSteps = 4096;
   /// eq. (4b)'s sliding steps: each one's error within this over resolution^2 of the bound at the centre (the lattice's
   /// own error falls as 1 / resolution^2)
   static constexpr double kTimeTolerance = 0.05;
