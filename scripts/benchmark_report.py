@@ -679,6 +679,15 @@ def streams_section(streams, node):
         lines += ["", "Flagged because the target was missed within the work budget; of those, %d with the coarsest"
                   " lattice's substeps truncated by it. Targets: accuracy_target 1 %%, raised below the noise to a quarter"
                   " of the forces' spread (median %s)." % (a["flagged_substeps_truncated"], fmt_err(a["target_median"])), ""]
+        q = s.get("strict")
+        if q:
+            lines += ["At accuracy_target 0.1 %% (auto_noise_fraction 0, the same stream and reference): per message p50 %s,"
+                      " p99 %s, max %s; flagged %s; unflagged: largest error %s, %d over the target; estimate below the"
+                      " error at %d of %d." % (
+                          fmt_us(q["time_us"]["p50"]), fmt_us(q["time_us"]["p99"]), fmt_us(q["time_us"]["max"]),
+                          fmt_share(q["flagged"], q["messages"]),
+                          fmt_err(q["unflagged_error_max"]) if q["unflagged_error_max"] is not None else "–",
+                          q["unflagged_over_target"], q.get("estimate_short", 0), q["messages"]), ""]
     live = node.get("streams", []) if node else []
     if live:
         lines += ["The live node (`contact_estimator_node`, one core) fed each recording at its own pace by `node_benchmark`:"
