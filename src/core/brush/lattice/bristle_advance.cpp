@@ -447,8 +447,8 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
       const double x = hi;
       if (!to_event && x < 0.999)
       {
-        // the interpolant only locates the event: the pair itself steps to it (its error then holds at the bristle's
-        // last sliding state; taken from a long step's cubic that state was off by up to 5 % of the bound)
+        // the interpolant only locates the event: the pair itself steps to it, so that the bristle's last sliding
+        // state carries the pair's error estimate (the cubic's value, third order, carries none)
         to_event = true;
         step = x * d;
         continue;

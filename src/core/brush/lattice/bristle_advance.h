@@ -32,11 +32,14 @@ struct BristleState
 /// - rigid law (Sect. 6): u = (mu q_z / k) w / |w|, no history; it re-adheres where the path enters G, where the bound
 ///   grows along the motion faster than |w| (d(mu q_z / k)/dtau >= |w|, a polynomial condition of degree 2 or 4):
 ///   exact.
-/// - eq. (4b): the trial deflection (the closed form over a step) scaled back onto the bound, the implicit form of eq.
-///   (4b); each step compared with two half steps, their Richardson combination taken (second order), steps chosen per
-///   bristle so that the first-order estimate stays within `tolerance` of the bound. Without rolling (V_r = 0: parked,
-///   spin in place) drive and bound are constant along the "path" and the direction relaxes towards the drive in
-///   closed form, tan(delta / 2) ~ e^{-|w| tau / b}: exact, one step.
+/// - eq. (4b): on the bound u = b e, the direction's Riccati equation in the frame of each step's start by Dormand and
+///   Prince's 5(4) pair where the pull |w| / b is not stiff over the step; where it is, an exponential step in the
+///   drive's frame, else the trial deflection (the closed form over a step) scaled back onto the bound, the implicit
+///   form of eq. (4b), against two half steps; each step's error within `tolerance`. The sliding speed w.e - db/dtau is
+///   watched at the stages (a re-adhesion located, then stepped to), and no step passes the path's entry into G
+///   (|w| <= db/dtau), where the bristle has re-adhered at the latest. Without rolling (V_r = 0: parked, spin in
+///   place) drive and bound are constant along the "path" and the direction relaxes towards the drive in closed form,
+///   tan(delta / 2) ~ e^{-|w| tau / b}: exact, one step.
 class BristleAdvance
 {
 public:
