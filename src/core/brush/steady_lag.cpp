@@ -13,7 +13,12 @@
 
 namespace sphere_contact_estimator
 {
-SteadyLag::SteadyLag(double longest, PressureDistribution pressure) : a_(0.5 * longest)
+namespace
+{
+// memorySliding's table for one pressure law, in units of a (it depends on nothing else)
+using SlidingTable = std::array<double, SteadyLag::kTable + 1>;
+
+SlidingTable slidingTable(PressureDistribution pressure)
 {
   // The load on the disc (units of a) ahead of x = d - l(y) on every path, over the whole load: across the paths
   // y = Y sin(phi) (Y where the chord 2l equals d), which smooths the ends where a chord just fits, by a 32-point
@@ -34,9 +39,23 @@ SteadyLag::SteadyLag(double longest, PressureDistribution pressure) : a_(0.5 * l
       }
     return sum;
   };
+  SlidingTable table;
   const double total = load(0.0);
-  for (int k = 0; k <= kTable; ++k)
-    sliding_[k] = k == 0 ? 1.0 : std::clamp(load(2.0 * k / kTable) / total, 0.0, 1.0);
+  for (int k = 0; k <= SteadyLag::kTable; ++k)
+    table[k] = k == 0 ? 1.0 : std::clamp(load(2.0 * k / SteadyLag::kTable) / total, 0.0, 1.0);
+  return table;
+}
+}  // namespace
+
+SteadyLag::SteadyLag(double longest, PressureDistribution pressure) : a_(0.5 * longest)
+{
+  // built once per law (about a millisecond each), not at every model's construction (each reconfiguration)
+  static const SlidingTable parabolic = slidingTable(PressureDistribution::Parabolic);
+  static const SlidingTable hertzian = slidingTable(PressureDistribution::Hertzian);
+  static const SlidingTable uniform = slidingTable(PressureDistribution::Uniform);
+  sliding_ = pressure == PressureDistribution::Hertzian ? hertzian.data()
+             : pressure == PressureDistribution::Uniform ? uniform.data()
+                                                          : parabolic.data();
 }
 
 double SteadyLag::memorySliding(double delta) const

@@ -68,10 +68,11 @@ public:
   /// The slowest renewal of any state: max(memory, memorySliding).
   double slowest(double delta) const { return std::max(memory(delta), memorySliding(delta)); }
 
+  static constexpr int kTable = 512;  // intervals of memorySliding's table over delta in [0, 2a]
+
 private:
   static constexpr int kCapacity = 256;  // changes kept: the oldest has the least weight and goes first
-  static constexpr int kTable = 512;     // intervals of memorySliding's table over delta in [0, 2a]
-  std::array<double, kTable + 1> sliding_{};
+  const double* sliding_;                 // memorySliding's table of this pressure law (kTable + 1 values, shared)
   double a_;  // half the longest path: the memory is that of a disc of this radius
   double s_ = 0.0;  // travel so far
   bool have_ = false;
