@@ -118,18 +118,25 @@ BENCHMARK(BM_BrushTransientStep)
     ->ArgsProduct({ { 8, 12, 16, 24, 32, 48 }, { 0, 1 }, kLawArgs })
     ->ArgNames({ "resolution", "tilt", "law" });
 
+// Steps of recorded odometry at the Fig. 4 point: noise on the slips and the spin at every one
+std::vector<sce::ContactKinematics> noisyFigure4Steps(unsigned seed, int count)
+{
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  std::vector<sce::ContactKinematics> steps;
+  for (int i = 0; i < count; ++i)
+    steps.push_back(sce::ContactKinematics::fromSlips({ 0.05 + 0.005 * noise(rng), 0.02 + 0.005 * noise(rng) },
+                                                      3.33 + 0.1 * noise(rng), 0.9, 1.0));
+  return steps;
+}
+
 // The same with noise on the slips and the spin at every step (recorded odometry): the inputs are never held, so the
 // rows' correction (no tilt) is re-evaluated each patch radius of travel.
 void BM_BrushTransientNoisyStep(benchmark::State& state)
 {
   sce::BrushTransient model(figure4(static_cast<int>(state.range(0)), state.range(1) != 0, lawArg(state.range(2))));
   model.update(kKinematics, 0.2);  // settle
-  std::mt19937_64 rng(5);
-  std::normal_distribution<double> noise(0.0, 1.0);
-  std::vector<sce::ContactKinematics> steps;
-  for (int i = 0; i < 1000; ++i)
-    steps.push_back(sce::ContactKinematics::fromSlips({ 0.05 + 0.005 * noise(rng), 0.02 + 0.005 * noise(rng) },
-                                                      3.33 + 0.1 * noise(rng), 0.9, 1.0));
+  const std::vector<sce::ContactKinematics> steps = noisyFigure4Steps(5, 1000);
   std::size_t i = 0;
   for (auto _ : state)
   {
@@ -149,12 +156,7 @@ void BM_BrushTransientMessage(benchmark::State& state)
   sce::BrushTransient model(figure4(static_cast<int>(state.range(0)), false, lawArg(state.range(2))));
   model.setStepping(state.range(1) == 0 ? sce::TransientStepping::WholeStep : sce::TransientStepping::Substeps);
   model.update(kKinematics, 0.2);  // settle
-  std::mt19937_64 rng(7);
-  std::normal_distribution<double> noise(0.0, 1.0);
-  std::vector<sce::ContactKinematics> steps;
-  for (int i = 0; i < 200; ++i)
-    steps.push_back(sce::ContactKinematics::fromSlips({ 0.05 + 0.005 * noise(rng), 0.02 + 0.005 * noise(rng) },
-                                                      3.33 + 0.1 * noise(rng), 0.9, 1.0));
+  const std::vector<sce::ContactKinematics> steps = noisyFigure4Steps(7, 200);
   std::size_t i = 0;
   for (auto _ : state)
   {

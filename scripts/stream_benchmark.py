@@ -27,7 +27,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from bag_model_accuracy import environment  # noqa: E402  (the tool's own libraries first)
+from bag_model_accuracy import environment, error  # noqa: E402  (the tool's own libraries first)
 
 FLAG_SUBSTEPS_TRUNCATED, FLAG_ACCURACY_NOT_MET = 8, 16
 STRICT = {"accuracy_target": 0.001, "auto_noise_fraction": 0.0}  # a second pass at 0.1 %, not raised to the noise
@@ -79,14 +79,6 @@ def quantile(v, q):
     i = int(math.floor(pos))
     j = min(i + 1, len(v) - 1)
     return v[i] + (v[j] - v[i]) * (pos - i)
-
-
-def distance(a, b):
-    scale = float(a["friction"]) * float(a["load"])
-    if not scale > 0.0:
-        return 0.0
-    return max(abs(float(a["brush_fx"]) - float(b["brush_fx"])), abs(float(a["brush_fy"]) - float(b["brush_fy"])),
-               abs(float(a["brush_mz"]) - float(b["brush_mz"])) / float(a["patch_radius"])) / scale
 
 
 def summarise(rows):
@@ -160,8 +152,8 @@ def main():
                          % (bag, len(rows), len(fine), len(coarse), len(strict)))
             t0 = float(rows[0]["stamp"])
             for r, q, f, c in zip(rows, strict, fine, coarse):
-                r["_error"], q["_error"] = distance(r, f), distance(q, f)
-                r["_reference_error"] = q["_reference_error"] = distance(f, c)
+                r["_error"], q["_error"] = error(r, f), error(q, f)
+                r["_reference_error"] = q["_reference_error"] = error(c, f)
                 t = float(r["stamp"]) - t0
                 r["_segment"] = next((p[0] for p in parts if p[1] <= t < p[2] + 1e-9), parts[-1][0])
             duration = float(rows[-1]["stamp"]) - t0

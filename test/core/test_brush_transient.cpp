@@ -433,6 +433,38 @@ TEST(BrushTransient, TiltingRadiusInsideThePatch)
   }
 }
 
+// One message of a noisy history at a random point: rolling at the base slips and spin a_phi / a with noise on each
+// (phi held within |R_gamma| > a / 0.9 with tilt), or, parked, creeping at 0.01 m/s with noise for the slip velocity
+// and the spin; the draws in a fixed order.
+struct NoisyHistory
+{
+  Eigen::Vector2d base;
+  double a_phi, noise;
+  double chi;         // rolling: chi_gamma
+  double chi_parked;  // parked: psi_dot = (1 - chi_parked) omega_z
+
+  ContactKinematics message(std::mt19937_64& rng, bool parked, const BrushParameters& p) const
+  {
+    std::normal_distribution<double> g(0.0, 1.0);
+    ContactKinematics k;
+    if (parked)
+    {
+      const double vx = g(rng), vy = g(rng);
+      k.V_r = 0.01 * Eigen::Vector2d(vx, vy);
+      const double sx = g(rng), sy = g(rng);
+      k.V_s = noise * Eigen::Vector2d(sx, sy);
+      k.omega_z = (a_phi + noise * g(rng)) / p.a;
+      k.psi_dot = (1.0 - chi_parked) * k.omega_z;
+      return k;
+    }
+    double phi = (a_phi + noise * g(rng)) / p.a;
+    if (p.tilt && std::abs(chi * phi) * p.a > 0.9)
+      phi = std::copysign(0.9 / (std::abs(chi) * p.a), phi);
+    const double sx = g(rng), sy = g(rng);
+    return ContactKinematics::fromSlips(base + noise * Eigen::Vector2d(sx, 0.3 * sy), phi, chi, 1.0);
+  }
+};
+
 TEST(BrushTransient, ErrorEstimateCoversNoisyHistoriesAtRandomPoints)
 {
   // Seeded random operating points over the envelope (a = 0.01-0.08 m, F_z = 20-5000 N, mu = 0.2-1.2,
@@ -446,7 +478,6 @@ TEST(BrushTransient, ErrorEstimateCoversNoisyHistoriesAtRandomPoints)
   {
   std::mt19937_64 rng(23);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::normal_distribution<double> g(0.0, 1.0);
   int checked = 0, short_count = 0;
   double worst = 0.0;
   for (int h = 0; h < 60; ++h)
@@ -460,27 +491,14 @@ TEST(BrushTransient, ErrorEstimateCoversNoisyHistoriesAtRandomPoints)
     const double dt = std::pow(10.0, -1.5 + 1.9 * u(rng)) * p.a;  // at V_r = 1 m/s
     const double chi = -0.5 + 2.0 * u(rng);
     const bool standstill = u(rng) < 0.3;
+    const NoisyHistory history{ base, a_phi, noise, chi, chi };
     BrushParameters fine = p;
     p.resolution = 16;
     fine.resolution = 64;
     BrushTransient coarse_model(p), fine_model(fine);
     for (int m = 0; m < 24; ++m)
     {
-      ContactKinematics k;
-      if (standstill && m >= 16)
-      {
-        k.V_r = 0.01 * Eigen::Vector2d(g(rng), g(rng));
-        k.V_s = noise * Eigen::Vector2d(g(rng), g(rng));
-        k.omega_z = (a_phi + noise * g(rng)) / p.a;
-        k.psi_dot = (1.0 - chi) * k.omega_z;
-      }
-      else
-      {
-        double phi = (a_phi + noise * g(rng)) / p.a;
-        if (p.tilt && std::abs(chi * phi) * p.a > 0.9)
-          phi = std::copysign(0.9 / (std::abs(chi) * p.a), phi);
-        k = ContactKinematics::fromSlips(base + noise * Eigen::Vector2d(g(rng), 0.3 * g(rng)), phi, chi, 1.0);
-      }
+      const ContactKinematics k = history.message(rng, standstill && m >= 16, p);
       const double step = m == 0 ? 0.0 : dt;
       const BrushForces c = coarse_model.update(k, step), f = fine_model.update(k, step);
       if (m < 12)
@@ -518,7 +536,6 @@ TEST(BrushTransient, WholeStepsAgreeWithSubstepsOnNoisyHistories)
   {
     std::mt19937_64 rng(29);
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    std::normal_distribution<double> g(0.0, 1.0);
     int checked = 0, short_count = 0;
     double worst = 0.0;
     for (int h = 0; h < 40; ++h)
@@ -531,20 +548,12 @@ TEST(BrushTransient, WholeStepsAgreeWithSubstepsOnNoisyHistories)
       const double a_phi = scale * (2.0 * u(rng) - 1.0), noise = std::pow(10.0, -3.0 + 2.0 * u(rng));
       const double dt = std::pow(10.0, -1.5 + 1.9 * u(rng)) * p.a;  // at V_r = 1 m/s
       const bool parked = u(rng) < 0.3;
+      const NoisyHistory history{ base, a_phi, noise, 1.0, 0.0 };
       BrushTransient whole(p), substeps(p);
       substeps.setStepping(TransientStepping::Substeps);
       for (int m = 0; m < 24; ++m)
       {
-        ContactKinematics k;
-        if (parked && m >= 16)
-        {
-          k.V_r = 0.01 * Eigen::Vector2d(g(rng), g(rng));
-          k.V_s = noise * Eigen::Vector2d(g(rng), g(rng));
-          k.omega_z = k.psi_dot = (a_phi + noise * g(rng)) / p.a;
-        }
-        else
-          k = ContactKinematics::fromSlips(base + noise * Eigen::Vector2d(g(rng), 0.3 * g(rng)),
-                                           (a_phi + noise * g(rng)) / p.a, 1.0, 1.0);
+        const ContactKinematics k = history.message(rng, parked && m >= 16, p);
         const BrushForces a = whole.update(k, m == 0 ? 0.0 : dt), b = substeps.update(k, m == 0 ? 0.0 : dt);
         if (m < 12)
           continue;

@@ -2,6 +2,7 @@
 
 // STL
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 // Boost
@@ -157,19 +158,20 @@ void BrushTransient::allocate()
   h_ = 2.0 * p_.a / n;
   w_ = n + 6;  // the patch plus a margin: points shifted into the window are outside the patch
   c0_ = 0.5 * (w_ - 1);
-  u_.resize(static_cast<std::size_t>(w_) * w_);
-  inside_.resize(u_.size());
-  sliding_.resize(u_.size());
-  slip_travel_.resize(u_.size());
-  step_error_.resize(u_.size());
-  step_error_scratch_.resize(u_.size());
-  jump_.resize(u_.size());
-  u_scratch_.resize(u_.size());
-  jump_scratch_.resize(u_.size());
-  inside_scratch_.resize(u_.size());
-  sliding_scratch_.resize(u_.size());
-  slip_travel_scratch_.resize(u_.size());
+  const std::size_t size = static_cast<std::size_t>(w_) * w_;
+  resizeState(size, false);
+  resizeState(size, true);
   reset();
+}
+
+void BrushTransient::resizeState(std::size_t size, bool scratch)
+{
+  for (auto* v : scratch ? std::array{ &u_scratch_, &jump_scratch_ } : std::array{ &u_, &jump_ })
+    v->resize(size);
+  for (auto* v : scratch ? std::array{ &inside_scratch_, &sliding_scratch_ } : std::array{ &inside_, &sliding_ })
+    v->resize(size);
+  for (auto* v : scratch ? std::array{ &slip_travel_scratch_, &step_error_scratch_ } : std::array{ &slip_travel_, &step_error_ })
+    v->resize(size);
 }
 
 bool BrushTransient::coarsen()
@@ -193,12 +195,7 @@ bool BrushTransient::coarsen()
   w_ = p_.resolution + 6;
   c0_ = 0.5 * (w_ - 1);
   const std::size_t size = static_cast<std::size_t>(w_) * w_;
-  for (auto* v : { &u_, &jump_ })
-    v->resize(size);
-  for (auto* v : { &inside_, &sliding_ })
-    v->resize(size);
-  for (auto* v : { &slip_travel_, &step_error_ })
-    v->resize(size);
+  resizeState(size, false);  // the scratch arrays still hold the fine state
   for (int j = 0; j < w_; ++j)
     for (int i = 0; i < w_; ++i)
     {
@@ -214,12 +211,7 @@ bool BrushTransient::coarsen()
       step_error_[p] = kept ? step_error_scratch_[q] : 0.0;
     }
   // the scratch arrays the same size again (recentre swaps them in); shrinking keeps their storage
-  for (auto* v : { &u_scratch_, &jump_scratch_ })
-    v->resize(size);
-  for (auto* v : { &inside_scratch_, &sliding_scratch_ })
-    v->resize(size);
-  for (auto* v : { &slip_travel_scratch_, &step_error_scratch_ })
-    v->resize(size);
+  resizeState(size, true);
   rows_.reset();  // the rows moved: the control variate is evaluated again
   recentre();
   return true;

@@ -155,6 +155,7 @@ private:
     return o_ + R_ * Eigen::Vector2d((i - c0_) * h_, (j - c0_) * h_);
   }
   void allocate();  // sizes the lattice for p_ and resets
+  void resizeState(std::size_t size, bool scratch);  // the per-point arrays (or their scratch twins) to size points
   // without tilt: every bristle over the whole step along its straight path (lattice/bristle_advance.h); false where the
   // work budget cut the sliding steps short
   bool advanceWhole(const ContactKinematics& kin, double dt);
