@@ -127,6 +127,7 @@ bool BrushTransient::setParameters(const BrushParameters& parameters)
     // the bristles were deflected under other parameters: not the steady state of any inputs under these (the rows'
     // steady field stays a valid control variate until it is re-evaluated: no jump at a retune)
     held_travel_ = 0.0;
+    clearSpreadWindow();  // spreads in fractions of another mu F_z
   }
   return lattice_changes;
 }
@@ -213,6 +214,7 @@ bool BrushTransient::coarsen()
   // the scratch arrays the same size again (recentre swaps them in); shrinking keeps their storage
   resizeState(size, true);
   rows_.reset();  // the rows moved: the control variate is evaluated again
+  clearSpreadWindow();  // the spreads were of the finer lattice
   recentre();
   return true;
 }
@@ -231,6 +233,7 @@ void BrushTransient::reset()
   have_last_kin_ = false;
   held_travel_ = 0.0;
   fill_travel_ = 0.0;
+  clearSpreadWindow();
   rows_.reset();
   const double a2 = p_.a * p_.a;
   for (int j = 0; j < w_; ++j)
@@ -282,13 +285,28 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   // the rows' correction holds the streaks once every bristle in the patch entered under the inputs it is of
   const bool corrected = held_travel_ >= 2.0 * p_.a && rows_.of(slips, p_);
   streak_estimate_ = corrected ? 0.0 : streakBound(slips);
-  const BrushForces g = forces();
+  double fixed = 0.0, spread = 0.0;
+  const BrushForces g = sums(fixed, spread);
+  // the spread window (clearSpreadWindow): the phase moves with the roots' travel and, with tilt, their turn; an update
+  // that moves it by a spacing or more leaves nothing of the window before it
+  const double phase_travel = (kin.V_r.norm() + (p_.tilt ? std::abs(kin.omegaGamma()) * p_.a : 0.0)) * std::max(dt, 0.0);
+  if (phase_travel >= h_)
+    clearSpreadWindow();  // and this update's own spread is its estimate's
+  else if ((spread_travel_ += phase_travel) >= h_ || ++spread_updates_ >= kSpreadBucketUpdates)
+  {
+    spread_before_ = spread_now_;
+    spread_now_ = 0.0;
+    spread_travel_ = 0.0;
+    spread_updates_ = 0;
+  }
+  if (phase_travel < h_)
+    spread_now_ = std::max(spread_now_, spread);
   f.F_x = g.F_x;
   f.F_y = g.F_y;
   f.M_z = g.M_z;
   f.sliding_fraction = g.sliding_fraction;
   f.max_utilisation = g.max_utilisation;
-  f.error_estimate = g.error_estimate + (short_of_work ? 2.0 : 0.0);
+  f.error_estimate = fixed + std::max({ spread, spread_now_, spread_before_ }) + (short_of_work ? 2.0 : 0.0);
   work_ += static_cast<long>(w_) * w_ * kPointWork;  // the sums over the lattice and its sub-lattices
   f.work = work_;
   return f;
@@ -665,6 +683,15 @@ Eigen::Vector2d BrushTransient::cellSum(int i, int j, const Motion& m, int k, do
 
 BrushForces BrushTransient::forces() const
 {
+  double fixed = 0.0, spread = 0.0;
+  BrushForces f = sums(fixed, spread);
+  f.error_estimate = fixed + std::max({ spread, spread_now_, spread_before_ });
+  return f;
+}
+
+BrushForces BrushTransient::sums(double& fixed, double& spread) const
+{
+  fixed = spread = 0.0;
   // The lattice sum, and the same over each of the four sub-lattices of twice the spacing (the parities of
   // the lattice indices): how far those move from the full sum bounds the error. An error C h^p with p >= 1
   // makes the difference (2^p - 1) C h^p, at least the error itself; twice it covers the irregular part that
@@ -744,19 +771,20 @@ BrushForces BrushTransient::forces() const
   f.sliding_fraction = static_cast<double>(sliding) / count[0];
   f.max_utilisation = utilisation;
   const double scale = p_.mu * p_.F_z;
-  f.error_estimate = streak_estimate_;
+  fixed = streak_estimate_;
   if (scale > 0.0)
-    f.error_estimate += p_.k * step_error * weight(0) / scale;
-  f.error_estimate += rows_.error(p_.pressure);
-  const double fixed = f.error_estimate;
+    fixed += p_.k * step_error * weight(0) / scale;
+  fixed += rows_.error(p_.pressure);
+  spread = 0.0;
   if (scale > 0.0)
     for (int k = 1; k <= 4; ++k)
     {
       const BrushForces g = count[k] > 0 ? sum(k) : BrushForces{};
-      f.error_estimate = std::max(f.error_estimate, fixed + 2.0 *
-                                                        std::max({ std::abs(g.F_x - full.F_x), std::abs(g.F_y - full.F_y),
-                                                                   std::abs(g.M_z - full.M_z) / p_.a }) / scale);
+      spread = std::max(spread, 2.0 *
+                                    std::max({ std::abs(g.F_x - full.F_x), std::abs(g.F_y - full.F_y),
+                                               std::abs(g.M_z - full.M_z) / p_.a }) / scale);
     }
+  f.error_estimate = fixed + spread;
   return f;
 }
 
