@@ -141,6 +141,7 @@ void BrushTransient::rotateFrame(double alpha)
   }
   held_travel_ = 0.0;
   have_last_kin_ = false;
+  clearSpreadWindow();  // the phases were in the old axes
   rows_.invalidate();
   const Eigen::Matrix2d Q = rotation(-alpha);  // components in axes turned by alpha
   R_ = Q * R_;
@@ -287,26 +288,33 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   streak_estimate_ = corrected ? 0.0 : streakBound(slips);
   double fixed = 0.0, spread = 0.0;
   const BrushForces g = sums(fixed, spread);
-  // the spread window (clearSpreadWindow): the phase moves with the roots' travel and, with tilt, their turn; an update
-  // that moves it by a spacing or more leaves nothing of the window before it
-  const double phase_travel = (kin.V_r.norm() + (p_.tilt ? std::abs(kin.omegaGamma()) * p_.a : 0.0)) * std::max(dt, 0.0);
-  if (phase_travel >= h_)
-    clearSpreadWindow();  // and this update's own spread is its estimate's
-  else if ((spread_travel_ += phase_travel) >= h_ || ++spread_updates_ >= kSpreadBucketUpdates)
+  // the spreads at other phases (clearSpreadWindow): the phase moves with the roots' displacement and, with tilt, their
+  // turn
+  const double turn = p_.tilt ? kin.omegaGamma() * std::max(dt, 0.0) : 0.0;
+  const Eigen::Vector3d step(kin.V_r.x() * std::max(dt, 0.0), kin.V_r.y() * std::max(dt, 0.0), p_.a * turn);
+  if (step.norm() >= h_)
+    clearSpreadWindow();  // this update's own spread is its estimate's
+  else
   {
-    spread_before_ = spread_now_;
-    spread_now_ = 0.0;
-    spread_travel_ = 0.0;
-    spread_updates_ = 0;
+    phase_ += step;
+    window_spread_ = 0.0;
+    for (int i = 0; i < spread_count_; ++i)
+    {
+      const double away = (phase_ - phase_at_[i]).norm();
+      if (away >= 0.125 * h_ && away < h_)
+        window_spread_ = std::max(window_spread_, spread_at_[i]);
+    }
+    spread_at_[spread_next_] = spread;
+    phase_at_[spread_next_] = phase_;
+    spread_next_ = (spread_next_ + 1) % kSpreadWindow;
+    spread_count_ = std::min(spread_count_ + 1, kSpreadWindow);
   }
-  if (phase_travel < h_)
-    spread_now_ = std::max(spread_now_, spread);
   f.F_x = g.F_x;
   f.F_y = g.F_y;
   f.M_z = g.M_z;
   f.sliding_fraction = g.sliding_fraction;
   f.max_utilisation = g.max_utilisation;
-  f.error_estimate = fixed + std::max({ spread, spread_now_, spread_before_ }) + (short_of_work ? 2.0 : 0.0);
+  f.error_estimate = fixed + std::max(spread, window_spread_) + (short_of_work ? 2.0 : 0.0);
   work_ += static_cast<long>(w_) * w_ * kPointWork;  // the sums over the lattice and its sub-lattices
   f.work = work_;
   return f;
@@ -685,7 +693,7 @@ BrushForces BrushTransient::forces() const
 {
   double fixed = 0.0, spread = 0.0;
   BrushForces f = sums(fixed, spread);
-  f.error_estimate = fixed + std::max({ spread, spread_now_, spread_before_ });
+  f.error_estimate = fixed + std::max(spread, window_spread_);
   return f;
 }
 

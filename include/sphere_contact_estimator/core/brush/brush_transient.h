@@ -1,6 +1,7 @@
 #pragma once
 
 // STL
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -183,18 +184,24 @@ private:
 
   // The lattice's error changes with its phase against the patch edge, which repeats every spacing the roots roll
   // (the cells the edge cuts, the onsets' cells): the sub-lattices' spread at one phase fell short of the error at
-  // another (by up to 1.6x at random points at resolution 128, uniform pressure, an adhesion zone shorter than a
-  // spacing). The estimate takes the largest spread over the last spacing of travel: two buckets, the current one
-  // and the one before, each closed after a spacing of travel or kSpreadBucketUpdates updates (parked, the phase does
-  // not move and the window is that many messages).
-  static constexpr int kSpreadBucketUpdates = 64;
-  double spread_now_ = 0.0, spread_before_ = 0.0;
-  double spread_travel_ = 0.0;
-  int spread_updates_ = 0;
+  // another (by up to 1.4x at random points at resolution 128, uniform pressure, an adhesion zone shorter than a
+  // spacing). The estimate also takes the spreads of the recent updates at other phases: the lattice at least an eighth
+  // and less than a whole spacing away from where it stands now (parked or spinning in place the phase does not move,
+  // and the spreads of earlier messages tell nothing this one's does not). An update that rolls a spacing or more
+  // starts afresh.
+  static constexpr int kSpreadWindow = 16;
+  std::array<double, kSpreadWindow> spread_at_{};
+  std::array<Eigen::Vector3d, kSpreadWindow> phase_at_{};
+  int spread_count_ = 0, spread_next_ = 0;
+  // where the lattice stands against the patch since the window started: the roots' displacement (back and forth
+  // under a parked robot's noise it goes nowhere) and, with tilt, their turn times a
+  Eigen::Vector3d phase_ = Eigen::Vector3d::Zero();
+  double window_spread_ = 0.0;  // the largest spread at the other phases, at the last update
   void clearSpreadWindow()
   {
-    spread_now_ = spread_before_ = spread_travel_ = 0.0;
-    spread_updates_ = 0;
+    spread_count_ = spread_next_ = 0;
+    phase_.setZero();
+    window_spread_ = 0.0;
   }
 
   TransientStepping stepping_ = TransientStepping::WholeStep;
