@@ -314,7 +314,7 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   f.M_z = g.M_z;
   f.sliding_fraction = g.sliding_fraction;
   f.max_utilisation = g.max_utilisation;
-  f.error_estimate = fixed + std::max(spread, window_spread_) + (short_of_work ? 2.0 : 0.0);
+  f.error_estimate = estimate(fixed, spread) + (short_of_work ? 2.0 : 0.0);
   work_ += static_cast<long>(w_) * w_ * kPointWork;  // the sums over the lattice and its sub-lattices
   f.work = work_;
   return f;
@@ -693,7 +693,7 @@ BrushForces BrushTransient::forces() const
 {
   double fixed = 0.0, spread = 0.0;
   BrushForces f = sums(fixed, spread);
-  f.error_estimate = fixed + std::max(spread, window_spread_);
+  f.error_estimate = estimate(fixed, spread);
   return f;
 }
 

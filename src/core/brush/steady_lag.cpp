@@ -45,17 +45,35 @@ SlidingTable slidingTable(PressureDistribution pressure)
     table[k] = k == 0 ? 1.0 : std::clamp(load(2.0 * k / SteadyLag::kTable) / total, 0.0, 1.0);
   return table;
 }
+
+// Built once per law (about a millisecond each), when a model of that law is first made: not at every model's
+// construction (each reconfiguration), nor for the laws nobody uses (each static is initialised only where reached).
+const double* slidingTableOf(PressureDistribution pressure)
+{
+  switch (pressure)
+  {
+    case PressureDistribution::Hertzian:
+    {
+      static const SlidingTable table = slidingTable(pressure);
+      return table.data();
+    }
+    case PressureDistribution::Uniform:
+    {
+      static const SlidingTable table = slidingTable(pressure);
+      return table.data();
+    }
+    default:
+    {
+      static const SlidingTable table = slidingTable(PressureDistribution::Parabolic);
+      return table.data();
+    }
+  }
+}
 }  // namespace
 
-SteadyLag::SteadyLag(double longest, PressureDistribution pressure) : a_(0.5 * longest)
+SteadyLag::SteadyLag(double longest, PressureDistribution pressure)
+  : sliding_(slidingTableOf(pressure)), a_(0.5 * longest)
 {
-  // built once per law (about a millisecond each), not at every model's construction (each reconfiguration)
-  static const SlidingTable parabolic = slidingTable(PressureDistribution::Parabolic);
-  static const SlidingTable hertzian = slidingTable(PressureDistribution::Hertzian);
-  static const SlidingTable uniform = slidingTable(PressureDistribution::Uniform);
-  sliding_ = pressure == PressureDistribution::Hertzian ? hertzian.data()
-             : pressure == PressureDistribution::Uniform ? uniform.data()
-                                                          : parabolic.data();
 }
 
 double SteadyLag::memorySliding(double delta) const

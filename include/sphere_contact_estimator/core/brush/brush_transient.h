@@ -1,6 +1,7 @@
 #pragma once
 
 // STL
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -197,6 +198,8 @@ private:
   // under a parked robot's noise it goes nowhere) and, with tilt, their turn times a
   Eigen::Vector3d phase_ = Eigen::Vector3d::Zero();
   double window_spread_ = 0.0;  // the largest spread at the other phases, at the last update
+  // the published estimate from the sums' two parts (sums) and the other phases' spreads
+  double estimate(double fixed, double spread) const { return fixed + std::max(spread, window_spread_); }
   void clearSpreadWindow()
   {
     spread_count_ = spread_next_ = 0;
