@@ -298,11 +298,15 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   {
     phase_ += step;
     window_spread_ = 0.0;
+    other_phases_ = false;
     for (int i = 0; i < spread_count_; ++i)
     {
       const double away = (phase_ - phase_at_[i]).norm();
       if (away >= 0.125 * h_ && away < h_)
+      {
         window_spread_ = std::max(window_spread_, spread_at_[i]);
+        other_phases_ = other_phases_ || away >= 0.25 * h_;
+      }
     }
     spread_at_[spread_next_] = spread;
     phase_at_[spread_next_] = phase_;
