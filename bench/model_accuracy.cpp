@@ -914,7 +914,7 @@ void cylinderSection(Json& out)
 // random points drawn with SEED (the same draw as the random section, which uses seed 2026), at targets 1e-2, 1e-3,
 // 1e-4 against the law's reference (rigid 1e-8, coulomb 1e-6; flagged references counted and left out): how often the
 // estimate is below the error (beyond the reference's own estimate), the largest error / estimate and where. The
-// README's sweep figures (rigid law) come from seeds 11, 15, 16, 17 with N = 7500.
+// docs/speed_and_accuracy.md's sweep figures (rigid law) come from seeds 11, 15, 16, 17 with N = 7500.
 int sweep(unsigned seed, int n, sce::SlidingLaw law)
 {
   const std::vector<Point> points = underLaw(randomPoints(n, seed), law);

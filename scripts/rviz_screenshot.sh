@@ -5,7 +5,7 @@
 # screenshot.
 # It fails unless RViz subscribed to the marker, wrench and odometry topics, nothing in the launch logged an error or
 # died, and the picture shows what the markers draw (adhering and sliding bristles, the friction circle, the force).
-#   scripts/rviz_screenshot.sh [OUTPUT.png]   (default: $WS/output/rviz_demo.png; the README's is
+#   scripts/rviz_screenshot.sh [OUTPUT.png]   (default: $WS/output/rviz_demo.png; the one docs/node.md shows is
 #                                              docs/figures/rviz_demo.png)
 # SCE_RVIZ_AT: seconds into the manoeuvre of the screenshot (default 7.9: braking, the patch partly sliding).
 set -euo pipefail

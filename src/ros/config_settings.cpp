@@ -43,7 +43,7 @@ EstimatorSettings settingsFromConfig(const ContactEstimatorConfig& c)
   s.stamp_tolerance = c.stamp_tolerance;
   s.work_budget = c.work_budget;
   s.rolling_resistance_model = checked<CylinderModelKind>("rolling_resistance_model", c.rolling_resistance_model, 4,
-                                                               "rr_off or off (0), exact (1), expansion (2), table (3)");
+                                                               "off (0), exact (1), expansion (2), table (3)");
   s.surface_stiffness = c.surface_stiffness;
   s.surface_damping = c.surface_damping;
   s.surface_density = c.surface_density;

@@ -3,8 +3,10 @@
 // STL
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 // Package
+#include "sphere_contact_estimator/ros/config_report.h"
 #include "sphere_contact_estimator/ros/contact_markers.h"
 #include "sphere_contact_estimator/ros/parameter_text.h"
 
@@ -42,10 +44,33 @@ ContactEstimatorRos::ContactEstimatorRos(ros::NodeHandle nh, ros::NodeHandle pnh
   bool all_repaired = true;
   for (const std::string& line : repairTextParameters(pnh_, all_repaired))
   {
-    if (all_repaired)
-      ROS_WARN_STREAM("contact estimator: parameter " << line);
+    if (line.find(kParameterIgnored) == std::string::npos)
+      ROS_WARN_STREAM("contact estimator: parameter " << line);  // read as meant
     else
       ROS_ERROR_STREAM("contact estimator: parameter " << line);
+  }
+  // A parameter of no such name (a typo in a YAML, a parameter of another node) would be ignored without a word.
+  {
+    const std::vector<std::string> start_up{ "queue_size", "diagnostic_period" };
+    std::vector<std::string> names;
+    ros::param::getParamNames(names);
+    const std::string prefix = pnh_.getNamespace() + "/";
+    std::vector<std::string> unknown;
+    for (const std::string& full : names)
+    {
+      if (full.compare(0, prefix.size(), prefix) != 0)
+        continue;
+      const std::string name = full.substr(prefix.size(), full.find('/', prefix.size()) - prefix.size());
+      if (!isKnownParameter(name, start_up) && std::find(unknown.begin(), unknown.end(), name) == unknown.end())
+        unknown.push_back(name);
+    }
+    for (const std::string& name : unknown)
+    {
+      const std::string nearest = nearestParameter(name, start_up);
+      ROS_WARN_STREAM("contact estimator: unknown parameter " << prefix << name << " ignored"
+                                                              << (nearest.empty() ? std::string(" (cfg/ContactEstimator.cfg lists them)")
+                                                                                  : "; did you mean " + nearest + "?"));
+    }
   }
   // The server reads the private parameters (config/contact_estimator.yaml) and calls back once now.
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<ContactEstimatorConfig>>(reconfigure_mutex_, pnh_);
@@ -79,16 +104,20 @@ ContactEstimatorRos::~ContactEstimatorRos()
 void ContactEstimatorRos::reconfigureCallback(ContactEstimatorConfig& config, uint32_t /*level*/)
 {
   std::lock_guard<std::mutex> lock(mutex_);
+  const std::vector<ParameterChange> changes = configurationChanges(config_, config);
   try
   {
     estimator_.configure(config);
   }
   catch (const std::exception& e)
   {
-    ROS_ERROR_STREAM("contact estimator: configuration rejected, keeping the previous one: " << e.what());
+    ROS_ERROR_STREAM("contact estimator: configuration rejected (" << describeChanges(changes) << "): " << e.what()
+                                                                   << "; the previous one stays in force");
     config = config_;  // the server publishes what is in force
     return;
   }
+  const bool first = !configured_;
+  configured_ = true;
   config_ = config;
   {
     std::lock_guard<std::mutex> stats(stats_mutex_);
@@ -96,10 +125,22 @@ void ContactEstimatorRos::reconfigureCallback(ContactEstimatorConfig& config, ui
     uncertainty_warning_ = config.uncertainty_warning;
     ground_frame_ = estimator_.groundFrame();
   }
+  // what is in force, by name: whole at start-up, then what changed
   const EstimatorSettings& s = estimator_.estimator().settings();
-  ROS_INFO("contact estimator: brush model %d (a = %.4g m, F_z = %.4g N, tilt %s), rolling resistance model %d",
-           config.brush_model, s.brushParameters().a, s.verticalLoad(), s.tilt ? "on" : "off",
-           config.rolling_resistance_model);
+  char derived[160];
+  std::snprintf(derived, sizeof derived, "R_r = %.4g m, F_z = %.4g N, a = %.4g m, mu F_z = %.4g N", s.rolling_radius,
+                s.verticalLoad(), s.brushParameters().a, s.brushParameters().mu * s.verticalLoad());
+  if (first)
+    ROS_INFO_STREAM("contact estimator: configuration (" << derived << "): " << configurationText(config));
+  else if (!changes.empty())
+    ROS_INFO_STREAM("contact estimator: reconfigured: " << describeChanges(changes) << " (" << derived << ")");
+  // the server clamps a value outside the .cfg's range to its end before the node sees it
+  for (const ParameterChange& c : changes)
+    if (c.at_bound)
+      ROS_WARN_STREAM("contact estimator: " << c.name << " is now " << c.after
+                                            << ", an end of its range in cfg/ContactEstimator.cfg: dynamic_reconfigure sets "
+                                               "a value outside the range to the range's end, so a value beyond it "
+                                               "was set to this one");
 }
 
 void ContactEstimatorRos::odometryCallback(const ros::MessageEvent<nav_msgs::Odometry const>& event)
@@ -133,6 +174,11 @@ void ContactEstimatorRos::odometryCallback(const ros::MessageEvent<nav_msgs::Odo
     ROS_WARN("contact estimator: time went backwards (a looping bag?): state reset");
   if (out->estimate.flags & ContactEstimate::FLAG_TF_STALE)
     ROS_WARN_THROTTLE(5.0, "contact estimator: %s: using the odometry's own orientation", estimator_.lastTfError().c_str());
+  if (e.flags & estimate_flags::kNotRolling)
+    ROS_WARN_THROTTLE(10.0, "contact estimator: the centre has moved at %.2f m/s for over %.0f s while the shell does not "
+                            "roll (V_r %.2f m/s): is twist.angular the body's yaw rate? It must be the angular velocity "
+                            "of the sphere's shell (README: Your robot)",
+                      std::hypot(msg.twist.twist.linear.x, msg.twist.twist.linear.y), kNotRollingTime, e.rolling_speed);
   if (out->estimate.messages_dropped > 0)
     ROS_WARN_THROTTLE(5.0, "contact estimator: %u odometry messages missing before this one (a gap in header.seq: the "
                            "queue overflowed, or the source lost them)",
@@ -158,6 +204,7 @@ void ContactEstimatorRos::odometryCallback(const ros::MessageEvent<nav_msgs::Odo
   last_flags_ = out->estimate.flags;
   last_motion_to_noise_ = e.motion_to_noise;
   within_noise_ += (e.flags & estimate_flags::kMotionWithinNoise) != 0;
+  not_rolling_ += (e.flags & estimate_flags::kNotRolling) != 0;
   ++since_report_;
   have_estimate_ = true;
   last_covariance_status_ = e.covariance.status;
@@ -223,6 +270,12 @@ void ContactEstimatorRos::diagnoseInput(diagnostic_updater::DiagnosticStatusWrap
   if (c.dropped > reported_dropped_)
     note(std::to_string(c.dropped - reported_dropped_) +
          " odometry messages dropped (gaps in header.seq: the queue overflowed, or the source lost them)");
+  if (not_rolling_ > 0)
+    note(std::to_string(not_rolling_) + " estimates with the centre moving while the shell does not roll (for over " +
+         std::to_string(static_cast<int>(kNotRollingTime)) + " s): twist.angular must be the shell's angular velocity, " +
+         "not the body's yaw rate");
+  status.add("centre moving, shell not rolling (since the last report)", not_rolling_);
+  not_rolling_ = 0;
   reported_rejected_ = c.rejected;
   reported_time_jumps_ = c.time_jumps;
   reported_dropped_ = c.dropped;
@@ -336,6 +389,8 @@ void ContactEstimatorRos::diagnoseUncertainty(diagnostic_updater::DiagnosticStat
   spread_max_ = 0.0;
   if (!problems.empty())
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, problems);
+  else if (!have_estimate_)
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "no estimate yet");
   else if (last_covariance_status_ == CovarianceStatus::Disabled)
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "propagation off");
   else

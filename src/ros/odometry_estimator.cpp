@@ -197,6 +197,10 @@ const EstimateOutputs* OdometryEstimator::process(const nav_msgs::Odometry& msg,
   in.stamp = msg.header.stamp.toSec();
   in.omega = q * vector(msg.twist.twist.angular);
   in.v_contact = q * vector(msg.twist.twist.linear);
+  // the robot's yaw: the contact frame's heading until the sphere rolls (none when its x axis stands vertical)
+  const Eigen::Vector3d body_x = q * Eigen::Vector3d::UnitX();
+  if (body_x.head<2>().norm() > 1e-6)
+    in.body_heading = std::atan2(body_x.y(), body_x.x());
   // its covariance (row-major, linear x, y, z, angular x, y, z) the same way, checked first; linear z is never used
   // and often marked unknown or huge by planar odometry, so it counts as exact (its row and column dropped)
   TwistCovariance C = Eigen::Map<const Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(msg.twist.covariance.data());

@@ -1,6 +1,8 @@
 #include "sphere_contact_estimator/ros/parameter_enum.h"
 
 // STL
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -21,12 +23,15 @@ std::vector<EnumValue> enumValues(const std::string& edit_method)
 
 std::optional<int> enumValue(const std::vector<EnumValue>& values, const std::string& text)
 {
+  // without regard to case, as dynparam matches them
+  const auto same = [](const std::string& a, const std::string& b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+             return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
+           });
+  };
   for (const EnumValue& v : values)
-  {
-    const std::size_t underscore = v.name.find('_');
-    if (text == v.name || (underscore != std::string::npos && text == v.name.substr(underscore + 1)))
+    if (same(text, v.name))
       return v.value;
-  }
   char* end = nullptr;
   errno = 0;
   const long number = std::strtol(text.c_str(), &end, 10);

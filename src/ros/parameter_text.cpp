@@ -41,7 +41,7 @@ std::vector<std::string> repairTextParameters(const ros::NodeHandle& pnh, bool& 
     const auto drop = [&](const std::string& why) {
       pnh.deleteParam(d->name);
       all_repaired = false;
-      lines.push_back(name + " = " + why + ": ignored, the default applies");
+      lines.push_back(name + " = " + why + kParameterIgnored);
     };
     if (value.getType() == XmlRpc::XmlRpcValue::TypeString)
     {

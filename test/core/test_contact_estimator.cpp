@@ -309,6 +309,82 @@ TEST(ContactEstimator, StandstillHoldsTheFrame)
   EXPECT_NEAR(d->heading, -2.0, 1e-12);
 }
 
+TEST(ContactEstimator, AResetTakesTheRobotsYawAsTheHeading)
+{
+  // rolling along 0, then the clock jumps back (a looping bag) while the robot, turned to 1.5 rad, stands still: the
+  // frame is the robot's, not the old rolling direction nor the ground frame's x, so a forward skid reads forward
+  ContactEstimator e(settings());
+  EstimatorInput in = rolling(10.0, 1.0, 0.0, 0.0, 0.0, 0.0);
+  in.body_heading = 0.0;
+  e.update(in);
+  in = rolling(5.0, 0.0, 1.5, 0.0, 0.0, 0.0);
+  in.body_heading = 1.5;
+  in.v_contact = Eigen::Vector3d(0.3 * std::cos(1.5), 0.3 * std::sin(1.5), 0.0);  // skidding forward, shell locked
+  const ContactEstimateData* d = e.update(in);
+  ASSERT_TRUE(d);
+  EXPECT_TRUE(d->flags & estimate_flags::kTimeJumpReset);
+  EXPECT_NEAR(d->heading, 1.5, 1e-12);
+  EXPECT_NEAR(d->sliding_velocity.x(), 0.3, 1e-12);
+  EXPECT_NEAR(d->sliding_velocity.y(), 0.0, 1e-12);
+  // the body's yaw only starts the frame: standing, it holds while the body turns; rolling sets it
+  in.stamp = 5.01;
+  in.body_heading = 2.0;
+  EXPECT_NEAR(e.update(in)->heading, 1.5, 1e-12);
+  EstimatorInput roll = rolling(5.02, 1.0, -1.0, 0.0, 0.0, 0.0);
+  roll.body_heading = 2.0;
+  EXPECT_NEAR(e.update(roll)->heading, -1.0, 1e-12);
+  // unknown yaw (NaN, the default): the ground frame's x, as before
+  ContactEstimator fresh(settings());
+  EXPECT_EQ(fresh.update(rolling(0.0, 0.0, 1.5, 0.0, 0.0, 0.0))->heading, 0.0);
+}
+
+TEST(ContactEstimator, TheCentreMovingWhileTheShellDoesNotRollIsFlagged)
+{
+  // The body's yaw rate in twist.angular (what diff-drive odometry publishes): no x, y part, so V_r = 0 while the
+  // centre moves at 0.8 m/s. Flagged once it lasts longer than kNotRollingTime, not before, and not for rolling,
+  // a short skid or a parked robot's noise.
+  const auto body_twist = [](double t) {
+    EstimatorInput in;
+    in.stamp = t;
+    in.omega = Eigen::Vector3d(0.0, 0.0, 0.3);
+    in.v_contact = Eigen::Vector3d(0.8, 0.0, 0.0);
+    return in;
+  };
+  ContactEstimator e(settings());
+  for (int i = 0; i <= 150; ++i)
+  {
+    const double t = 0.01 * i;
+    const ContactEstimateData* d = e.update(body_twist(t));
+    ASSERT_TRUE(d);
+    EXPECT_EQ(static_cast<bool>(d->flags & estimate_flags::kNotRolling), t > kNotRollingTime + 0.005) << t;
+  }
+  // rolling again clears it at once
+  EXPECT_FALSE(e.update(rolling(1.51, 0.8, 0.0, 0.0, 0.0, 0.0))->flags & estimate_flags::kNotRolling);
+  // a braking skid of 0.8 s with the shell locked, then rolling: never flagged
+  ContactEstimator skid(settings());
+  for (int i = 0; i < 200; ++i)
+  {
+    EstimatorInput in = rolling(0.01 * i, i < 80 ? 0.0 : 0.5, 0.0, i < 80 ? 0.6 : 0.0, 0.0, 0.0);
+    EXPECT_FALSE(skid.update(in)->flags & estimate_flags::kNotRolling) << i;
+  }
+  // a parked robot whose V_C noise (sd 5 mm/s, declared) exceeds standstill_speed / 3 at times: not flagged
+  EstimatorSettings parked_settings = settings();
+  parked_settings.standstill_speed = 0.001;
+  ContactEstimator parked(parked_settings);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 0.005);
+  for (int i = 0; i < 300; ++i)
+  {
+    EstimatorInput in;
+    in.stamp = 0.01 * i;
+    in.v_contact = Eigen::Vector3d(noise(rng), noise(rng), 0.0);
+    in.twist_covariance = TwistCovariance::Zero();
+    in.twist_covariance(0, 0) = in.twist_covariance(1, 1) = 0.005 * 0.005;
+    in.twist_covariance(3, 3) = in.twist_covariance(4, 4) = in.twist_covariance(5, 5) = 1e-6;
+    EXPECT_FALSE(parked.update(in)->flags & estimate_flags::kNotRolling) << i;
+  }
+}
+
 TEST(ContactEstimator, BristlesForDrawing)
 {
   for (BrushModelKind model : { BrushModelKind::Steady, BrushModelKind::Transient })

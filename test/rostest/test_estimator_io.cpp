@@ -402,7 +402,7 @@ TEST_F(EstimatorIo, MissingTfNeverBlocks)
 
 TEST_F(EstimatorIo, HostileInputHasADefinedOutcome)
 {
-  // The outcomes of the README's table, in one sequence; the node answers each as documented and goes on.
+  // The outcomes of docs/node.md's hostile-input table, in one sequence; the node answers each as documented and goes on.
   const double t = g_clock;
   odom_pub_.publish(odometry(t, 1.0, 0.0, 0.01, 0.0, 0.0));
   odom_pub_.publish(odometry(t, 1.0, 0.0, 0.01, 0.0, 0.0));        // duplicate stamp: answered, not advanced

@@ -146,13 +146,13 @@ nav_msgs::Odometry odometry(std::size_t n, double t, const ros::Time& stamp)
   return o;
 }
 
-/// The k-th configuration change: every brush and rolling-resistance model, friction down to zero, tilt,
+/// The k-th configuration change: every brush and rolling-resistance model, friction down to the .cfg's least (0.001), tilt,
 /// resolution, pressure, and surface parameters (which rebuild the rolling-resistance table).
 void change(std::size_t k, sce::ContactEstimatorConfig& c)
 {
   c.brush_model = static_cast<int>(k % 5);
   c.rolling_resistance_model = static_cast<int>((k / 2) % 4);
-  c.friction = std::vector<double>{ 0.8, 0.3, 0.0, 1.5 }[k % 4];
+  c.friction = std::vector<double>{ 0.8, 0.3, 0.001, 1.5 }[k % 4];
   c.tilt = (k / 3) % 2 == 1;
   c.resolution = std::vector<int>{ 16, 8, 32, 12 }[(k / 5) % 4];
   c.pressure = static_cast<int>((k / 7) % 3);

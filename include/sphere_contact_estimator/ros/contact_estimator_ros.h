@@ -95,6 +95,7 @@ private:
   std::mutex mutex_;
   OdometryEstimator estimator_;    // the same class bag_analyze runs
   ContactEstimatorConfig config_;  // the accepted configuration
+  bool configured_ = false;        // whether config_ is one the server gave (the first is logged whole)
   double stale_timeout_ = 1.0;
   visualization_msgs::MarkerArray markers_;  // reused so the hot path does not allocate it
   MessagePool<ContactEstimate> estimate_pool_;
@@ -122,6 +123,7 @@ private:
   double spread_max_ = 0.0, last_spread_ = 0.0;
   std::uint64_t over_spread_ = 0, reported_bad_covariance_ = 0;
   std::uint64_t within_noise_ = 0, since_report_ = 0;  // estimates flagged kMotionWithinNoise, and all, since the last report
+  std::uint64_t not_rolling_ = 0;  // estimates flagged kNotRolling since the last report
   double last_motion_to_noise_ = -1.0;
   CovarianceStatus last_covariance_status_ = CovarianceStatus::Disabled;
 };

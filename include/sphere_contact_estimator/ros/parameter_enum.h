@@ -18,8 +18,8 @@ struct EnumValue
 /// from the .cfg; empty for a parameter that is no enum.
 std::vector<EnumValue> enumValues(const std::string& edit_method);
 
-/// The value that text means: a name of the .cfg ("steady"; a prefixed name also without its prefix, "rr_off" as
-/// "off") or the number of one of the values ("2"). Nothing for anything else.
+/// The value that text means: a name of the .cfg without regard to case, as dynparam reads them ("steady", "off" for
+/// the rolling-resistance model's "Off") or the number of one of the values ("2"). Nothing for anything else.
 std::optional<int> enumValue(const std::vector<EnumValue>& values, const std::string& text);
 
 /// A whole number within int's range, which an int parameter can take (a cast of one beyond it is undefined).

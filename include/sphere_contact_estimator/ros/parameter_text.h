@@ -9,6 +9,9 @@
 
 namespace sphere_contact_estimator
 {
+/// How a line of repairTextParameters about a refused value (deleted: the default applies) ends.
+inline constexpr const char* kParameterIgnored = ": ignored, the default applies";
+
 /// The private parameters as the node reads them at start-up, checked before the reconfigure server sees them.
 /// YAML 1.1, which rosparam and roslaunch read, takes 1.0e8 (an exponent without a sign) for a string; a text
 /// where a number or a bool belongs is set to the value it means, and an enum parameter takes the names of

@@ -89,8 +89,10 @@ void ContactEstimator::reset()
 {
   have_last_ = false;
   was_rolling_ = false;
+  have_heading_ = false;  // the next message's body yaw, or its rolling direction, sets it
   heading_ = 0.0;
   turn_rate_ = 0.0;
+  not_rolling_time_ = 0.0;
   if (brush_)
     brush_->reset();
 }
@@ -127,7 +129,13 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   o.stamp = in.stamp;
   const bool first = !have_last_;
   o.dt = advanceClock(in.stamp, o.flags);
+  if (!have_heading_ && speed < settings_.standstill_speed && std::isfinite(in.body_heading))
+  {
+    heading_ = in.body_heading;  // standing: the robot's own yaw until it rolls (a reset forgets the old heading)
+    have_heading_ = true;
+  }
   followHeading(V_r, speed, o.dt, first, o.flags);
+  judgeRolling(in, speed, o);
   const double psi_dot =
       settings_.tilt_ratio_source == TiltRatioSource::Fixed ? (1.0 - settings_.tilt_ratio) * in.omega.z() : turn_rate_;
   o.heading = heading_;
@@ -202,6 +210,7 @@ void ContactEstimator::followHeading(const Eigen::Vector2d& V_r, double speed, d
       turn_rate_ += gain * (delta / dt - turn_rate_);
     }
     heading_ = theta;
+    have_heading_ = true;
   }
   else
   {
@@ -281,6 +290,21 @@ void ContactEstimator::runRollingResistance(double speed, ContactEstimateData& o
     o.rolling_resistance_torque = o.rolling_resistance.torque * cylinder_->parameters().L;
   }
   o.rolling_resistance_power = o.rolling_resistance_force * speed;
+}
+
+void ContactEstimator::judgeRolling(const EstimatorInput& in, double speed, ContactEstimateData& o)
+{
+  // The centre moving while the shell does not roll: V_C beyond standstill_speed and three standard deviations of its
+  // declared noise, V_r below a tenth of it. Briefly a skid; for long, almost always the body's yaw rate published as
+  // twist.angular (the shell's omega then has no x, y part), which reads as sliding at full friction.
+  const double v_c = in.v_contact.head<2>().norm();
+  double sd = 0.0;
+  if (in.twist_covariance_status == CovarianceStatus::Ok)
+    sd = std::sqrt(std::max(0.0, in.twist_covariance(0, 0) + in.twist_covariance(1, 1)));
+  const bool mismatch = v_c > settings_.standstill_speed && v_c > 3.0 * sd && speed < 0.1 * v_c;
+  not_rolling_time_ = mismatch ? not_rolling_time_ + o.dt : 0.0;
+  if (not_rolling_time_ > kNotRollingTime)
+    o.flags |= estimate_flags::kNotRolling;
 }
 
 void ContactEstimator::judgeMotion(const EstimatorInput& in, ContactEstimateData& o) const

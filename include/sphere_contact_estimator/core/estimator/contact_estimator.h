@@ -3,6 +3,7 @@
 // STL
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 
 // Eigen
@@ -28,6 +29,9 @@ struct EstimatorInput
   /// odometry's own check of it found (checkTwistCovariance; only an Ok one is used). Zero: exact inputs.
   TwistCovariance twist_covariance = TwistCovariance::Zero();
   CovarianceStatus twist_covariance_status = CovarianceStatus::Ok;
+  /// The yaw of the robot's x axis (child_frame_id) in the ground frame [rad], NaN if unknown: the contact frame's
+  /// heading until the sphere first rolls (at start-up and after a reset), instead of the ground frame's x.
+  double body_heading = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Bit flags of one estimate, beside the models' own (brush_flags, cylinder_flags).
@@ -45,7 +49,14 @@ constexpr std::uint32_t kMotionWithinNoise = 1u << 6;  // (bit 5 is the ROS laye
 /// The stamp is earlier than the last one by at most stamp_tolerance (jitter): answered at its inputs, nothing
 /// advanced, nothing reset (the clock stays at the latest stamp).
 constexpr std::uint32_t kStampOutOfOrder = 1u << 7;
+/// For longer than kNotRollingTime the centre has moved (beyond standstill_speed and three times the declared noise)
+/// while the shell rolled at less than a tenth of its speed: a long skid, or, far more likely, `twist.angular`
+/// holds the body's yaw rate instead of the shell's angular velocity. (Bits 8 and 9 are the ROS layer's.)
+constexpr std::uint32_t kNotRolling = 1u << 10;
 }  // namespace estimate_flags
+
+/// How long the centre may move while the shell does not roll before kNotRolling is set [s]: a braking skid is shorter.
+constexpr double kNotRollingTime = 1.0;
 
 /// One estimate, everything in the ROS contact frame (REP 103: x along the rolling direction, y left,
 /// z up; docs/conventions.md): lateral slips and forces, spins and yaw moments have the opposite sign of the
@@ -152,6 +163,7 @@ private:
   bool acceptable(const EstimatorInput& in, const Eigen::Vector2d& V_r, double speed) const;
   double advanceClock(double stamp, std::uint32_t& flags);
   void judgeMotion(const EstimatorInput& in, ContactEstimateData& o) const;
+  void judgeRolling(const EstimatorInput& in, double speed, ContactEstimateData& o);
   void followHeading(const Eigen::Vector2d& V_r, double speed, double dt, bool first, std::uint32_t& flags);
   ContactKinematics contactKinematics(const EstimatorInput& in, double psi_dot, ContactEstimateData& out) const;
   void runBrush(const ContactKinematics& kin, double dt, double omega_z, ContactEstimateData& out);
@@ -169,7 +181,8 @@ private:
   ContactEstimateData out_;
   bool have_last_ = false;
   double last_stamp_ = 0.0;
-  bool have_heading_ = false;  // a rolling direction has been seen
+  bool have_heading_ = false;  // heading_ is the robot's: a rolling direction, or its body's yaw
+  double not_rolling_time_ = 0.0;  // how long the centre has moved while the shell did not roll (judgeRolling)
   bool was_rolling_ = false;
   double heading_ = 0.0;
   double turn_rate_ = 0.0;

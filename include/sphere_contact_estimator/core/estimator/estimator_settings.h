@@ -30,13 +30,13 @@ struct EstimatorSettings
   double load = 0.0;            ///< F_z [N]; 0: robot_mass * gravity
   double gravity = 9.81;        ///< [m/s^2]
   // brush
-  BrushModelKind brush_model = BrushModelKind::Auto;  ///< the default: chosen on the demo bag (README)
+  BrushModelKind brush_model = BrushModelKind::Auto;  ///< the default: chosen on the demo bag (docs/speed_and_accuracy.md)
   double patch_radius = 0.01;      ///< a [m], unless contact_modulus > 0
   double contact_modulus = 0.0;    ///< E* [Pa]; > 0: a from Hertz with R = rolling_radius
   double bristle_stiffness = 2e8;  ///< k [N/m^3]
   double friction = 0.8;           ///< mu
   PressureDistribution pressure = PressureDistribution::Parabolic;
-  SlidingLaw sliding_law = SlidingLaw::Coulomb;  ///< eq. (4b); rigid: Sect. 6's approximation (README: Sliding law)
+  SlidingLaw sliding_law = SlidingLaw::Coulomb;  ///< eq. (4b); rigid: Sect. 6's approximation (docs/models.md: Sliding law)
   bool tilt = false;               ///< Sect. 4 formulation (eq. 31, 32)
   TiltRatioSource tilt_ratio_source = TiltRatioSource::Estimate;
   double tilt_ratio = 1.0;         ///< chi_gamma for TiltRatioSource::Fixed

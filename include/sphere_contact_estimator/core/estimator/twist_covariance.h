@@ -18,7 +18,7 @@ enum class CovarianceStatus : std::uint8_t
   Invalid = 3,      ///< not finite, a negative variance, not symmetric or not positive semi-definite: ignored
   Undefined = 4,    ///< no brush covariance here: slips undefined (standstill), no steady state over the spread
   Approximate = 5,  ///< propagated, but the rolling speed's spread reaches the standstill speed, or the forces kink or
-                    ///< jump within the spread (ForceCovariance::smooth): only approximate (README: limits)
+                    ///< jump within the spread (ForceCovariance::smooth): only approximate (docs/uncertainty.md)
 };
 
 const char* toString(CovarianceStatus status);
