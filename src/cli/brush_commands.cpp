@@ -16,6 +16,7 @@
 #include "sphere_contact_estimator/core/brush/brush_transient.h"
 #include "sphere_contact_estimator/core/brush/contact_kinematics.h"
 #include "sphere_contact_estimator/core/brush/force_covariance.h"
+#include "sphere_contact_estimator/core/estimator/paper_frame.h"
 
 namespace sphere_contact_estimator::cli
 {
@@ -27,19 +28,34 @@ void requireFinite(double x, const char* flag)
     throw std::invalid_argument(std::string(flag) + " must be finite");
 }
 
-nlohmann::ordered_json vectorOrNull(const std::optional<Eigen::Vector2d>& v)
+nlohmann::ordered_json vectorOrNull(const std::optional<Eigen::Vector2d>& v, bool ros)
 {
   if (!v || !v->allFinite())
     return nullptr;
-  return { v->x(), v->y() };
+  const Eigen::Vector2d w = ros ? paper_frame::toRos(*v) : *v;
+  return { w.x(), w.y() };
 }
+
+// --frame: the paper's (SAE: x forward, y right, z down), in which the models work, or REP 103's (x forward, y left,
+// z up) as on the node's topics; the two differ by half a turn about x (paper_frame.h, docs/conventions.md)
+void addFrameOption(CLI::App* sub, std::string& frame)
+{
+  sub->add_option("--frame", frame,
+                  "frame of the inputs and outputs: paper (SAE: x forward, y right, z down; the papers' signs) or ros "
+                  "(REP 103: x forward, y left, z up; the node's topics): a lateral component, a spin and a yaw moment "
+                  "change sign between them")
+      ->check(CLI::IsMember({ "paper", "ros" }))
+      ->capture_default_str();
+}
+
+const char* frameName(bool ros) { return ros ? "ros (REP 103: x forward, y left, z up)" : "paper (SAE: x forward, y right, z down)"; }
 }  // namespace
 
 CLI::App* addSlipsCommand(CLI::App& app, SlipsOptions& o)
 {
   CLI::App* sub = app.add_subcommand(
       "slips", "Slips and spins of a spherical wheel from its kinematics (Romano et al. eqs. 2, 12, 13, 36, 42), "
-               "paper frame (SAE, z down).");
+               "paper frame (SAE, z down) unless --frame ros.");
   sub->add_option("--omega", o.omega, "WX WY WZ: angular velocity of the sphere [rad/s]")->expected(3)->required();
   sub->add_option("--vc", o.vc, "VX VY: velocity of the contact-patch centre [m/s]")->expected(2)->required();
   sub->add_option("--rolling-radius", o.rolling_radius, "rolling radius R_r [m]")->required();
@@ -48,6 +64,7 @@ CLI::App* addSlipsCommand(CLI::App& app, SlipsOptions& o)
   turn->excludes(tilt);
   sub->add_option("--standstill-speed", o.standstill_speed, "rolling speed below which slips are undefined [m/s]")
       ->capture_default_str();
+  addFrameOption(sub, o.frame);
   return sub;
 }
 
@@ -61,8 +78,15 @@ void runSlipsCommand(const SlipsOptions& o, std::ostream& out)
     throw std::invalid_argument("--rolling-radius must be finite and > 0 [m]");
   if (!(std::isfinite(o.standstill_speed) && o.standstill_speed > 0.0))
     throw std::invalid_argument("--standstill-speed must be finite and > 0 [m/s]");
-  const Eigen::Vector3d omega(o.omega[0], o.omega[1], o.omega[2]);
-  const Eigen::Vector2d vc(o.vc[0], o.vc[1]);
+  // the models work in the paper frame; ros inputs are turned into it and the outputs back
+  const bool ros = o.frame == "ros";
+  const Eigen::Vector3d omega_in(o.omega[0], o.omega[1], o.omega[2]);
+  const Eigen::Vector2d vc_in(o.vc[0], o.vc[1]);
+  const Eigen::Vector3d omega = ros ? paper_frame::fromRos(omega_in) : omega_in;
+  const Eigen::Vector2d vc = ros ? paper_frame::fromRos(vc_in) : vc_in;
+  // (+ 0: a flipped zero prints as 0, not -0)
+  const auto vec = [ros](const Eigen::Vector2d& v) -> Eigen::Vector2d { return (ros ? paper_frame::toRos(v) : v) + Eigen::Vector2d::Zero(); };
+  const auto z = [ros](double x) { return (ros ? paper_frame::zToRos(x) : x) + 0.0; };
   ContactKinematics kin;
   if (o.tilt_ratio)
   {
@@ -72,29 +96,31 @@ void runSlipsCommand(const SlipsOptions& o, std::ostream& out)
   else
   {
     requireFinite(o.turn_rate.value_or(0.0), "--turn-rate");
-    kin = ContactKinematics::fromWheel(omega, vc, o.rolling_radius, o.turn_rate.value_or(0.0));
+    const double turn = o.turn_rate.value_or(0.0);
+    kin = ContactKinematics::fromWheel(omega, vc, o.rolling_radius, ros ? paper_frame::zFromRos(turn) : turn);
   }
   const Slips s = computeSlips(kin, o.standstill_speed);
   const auto slip = [&s](double x) { return s.defined ? number(x) : nlohmann::ordered_json(nullptr); };
   nlohmann::ordered_json j;
+  j["frame"] = frameName(ros);
   j["V_r"] = s.V_r;
-  j["V_r_x"] = kin.V_r.x();
-  j["V_r_y"] = kin.V_r.y();
-  j["V_s_x"] = kin.V_s.x();
-  j["V_s_y"] = kin.V_s.y();
-  j["sigma_x"] = slip(s.sigma.x());
-  j["sigma_y"] = slip(s.sigma.y());
-  j["phi"] = slip(s.phi);
-  j["phi_gamma"] = slip(s.phi_gamma);
-  j["phi_psi"] = slip(s.phi_psi);
+  j["V_r_x"] = vec(kin.V_r).x();
+  j["V_r_y"] = vec(kin.V_r).y();
+  j["V_s_x"] = vec(kin.V_s).x();
+  j["V_s_y"] = vec(kin.V_s).y();
+  j["sigma_x"] = slip(vec(s.sigma).x());
+  j["sigma_y"] = slip(vec(s.sigma).y());
+  j["phi"] = slip(z(s.phi));
+  j["phi_gamma"] = slip(z(s.phi_gamma));
+  j["phi_psi"] = slip(z(s.phi_psi));
   j["chi_gamma"] = s.chi_gamma ? number(*s.chi_gamma) : nlohmann::ordered_json(nullptr);
   j["chi_psi"] = s.chi_psi ? number(*s.chi_psi) : nlohmann::ordered_json(nullptr);
   j["epsilon_x"] = slip(s.epsilon.x());
   j["epsilon_y"] = slip(s.epsilon.y());
-  j["omega_gamma"] = kin.omegaGamma();
-  j["psi_dot"] = kin.psi_dot;
-  j["tilting_centre"] = vectorOrNull(s.tilting_centre);
-  j["turning_centre"] = vectorOrNull(s.turning_centre);
+  j["omega_gamma"] = z(kin.omegaGamma());
+  j["psi_dot"] = z(kin.psi_dot);
+  j["tilting_centre"] = vectorOrNull(s.tilting_centre, ros);
+  j["turning_centre"] = vectorOrNull(s.turning_centre, ros);
   j["valid"] = s.defined;
   nlohmann::ordered_json warnings = nlohmann::ordered_json::array();
   if (!s.defined)
@@ -110,7 +136,7 @@ CLI::App* addBrushCommand(CLI::App& app, BrushOptions& o)
 {
   CLI::App* sub = app.add_subcommand(
       "brush", "Forces and moment of the brush model of a spherical wheel (Romano et al.) at constant slips, paper "
-               "frame, epsilon = (0, 1).");
+               "frame (epsilon = (0, 1)) unless --frame ros.");
   BrushParameters& p = o.parameters;
   sub->add_option("--model", o.model, "linear | steady | transient | auto")->capture_default_str();
   sub->add_option("--accuracy-target", p.accuracy_target,
@@ -145,6 +171,7 @@ CLI::App* addBrushCommand(CLI::App& app, BrushOptions& o)
                   "CXX CXY CXPHI CYY CYPHI CPHIPHI: the covariance of (sigma_x, sigma_y, phi) [-, -, 1/m; 1/m^2]; adds "
                   "the covariance of (F_x, F_y, M_z) and the method used")
       ->expected(6);
+  addFrameOption(sub, o.frame);
   return sub;
 }
 
@@ -179,8 +206,12 @@ void runBrushCommand(const BrushOptions& o, std::ostream& out)
     throw std::invalid_argument("give --patch-radius, or --contact-modulus with --sphere-radius");
   p.validate();
 
-  const Eigen::Vector2d sigma(o.sigma_x, o.sigma_y);
-  const double phi_gamma = o.tilt_ratio * o.phi, phi_psi = o.phi - phi_gamma;
+  // the models work in the paper frame: a ros sigma_y and phi change sign on the way in, F_y and M_z on the way out
+  const bool ros = o.frame == "ros";
+  const double flip = ros ? -1.0 : 1.0;
+  const Eigen::Vector2d sigma(o.sigma_x, flip * o.sigma_y);
+  const double phi = flip * o.phi;
+  const double phi_gamma = o.tilt_ratio * phi, phi_psi = phi - phi_gamma;
   const bool inner_disc = p.tilt && std::abs(phi_gamma) * p.a > 1.0;  // |R_gamma| < a
   BrushModelKind ran = *kind;
   std::vector<std::string> notes;
@@ -196,11 +227,12 @@ void runBrushCommand(const BrushOptions& o, std::ostream& out)
   const std::unique_ptr<BrushModel> model = makeBrushModel(ran, p);
   // Constant slips at a rolling speed of 1 m/s along +x: the state after a distance s is the state after
   // s seconds (eqs. 12-13 make it independent of the speed).
-  const ContactKinematics kin = ContactKinematics::fromSlips(sigma, o.phi, o.tilt_ratio, 1.0);
+  const ContactKinematics kin = ContactKinematics::fromSlips(sigma, phi, o.tilt_ratio, 1.0);
   const bool advances = ran == BrushModelKind::Transient || ran == BrushModelKind::Auto;
   const BrushForces f = model->update(kin, advances ? distance : 0.0);
 
   nlohmann::ordered_json j;
+  j["frame"] = frameName(ros);
   j["model"] = toString(ran);
   j["sliding_law"] = ran == BrushModelKind::Linear ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(toString(p.sliding_law));
   if (ran == BrushModelKind::Auto)
@@ -209,8 +241,8 @@ void runBrushCommand(const BrushOptions& o, std::ostream& out)
     j["resolution_used"] = model->lastResolution();
   }
   j["Fx"] = number(f.F_x);
-  j["Fy"] = number(f.F_y);
-  j["Mz"] = number(f.M_z);
+  j["Fy"] = number(flip * f.F_y + 0.0);
+  j["Mz"] = number(flip * f.M_z + 0.0);
   j["sliding_fraction"] = number(f.sliding_fraction);
   j["max_utilisation"] = number(f.max_utilisation);
   j["error_estimate"] = number(f.error_estimate);
@@ -221,8 +253,8 @@ void runBrushCommand(const BrushOptions& o, std::ostream& out)
   j["warnings"] = warnings;
   j["patch_radius"] = p.a;
   j["tilt"] = p.tilt;
-  j["phi_gamma"] = phi_gamma;
-  j["phi_psi"] = phi_psi;
+  j["phi_gamma"] = flip * phi_gamma + 0.0;
+  j["phi_psi"] = flip * phi_psi + 0.0;
   if (ran == BrushModelKind::Steady || ran == BrushModelKind::Auto)
     j["accuracy_target"] = p.accuracy_target;
   if (ran == BrushModelKind::Transient || ran == BrushModelKind::Auto)
@@ -239,16 +271,18 @@ void runBrushCommand(const BrushOptions& o, std::ostream& out)
     if (const char* problem = covarianceProblem<3>(S))
       throw std::invalid_argument(std::string("--covariance is ") + problem + ": give the upper triangle of a covariance "
                                   "of (sigma_x, sigma_y, phi), CXX CXY CXPHI CYY CYPHI CPHIPHI");
+    // (sigma_y, phi) and (F_y, M_z) change sign together between the frames: D S D with D = diag(1, -1, -1)
+    const Eigen::Matrix3d D = Eigen::Vector3d(1.0, flip, flip).asDiagonal();
     const ForceCovariance c = propagateSlipCovariance(ran == BrushModelKind::Linear ? BrushModelKind::Linear : BrushModelKind::Steady,
-                                                      p, sigma, o.phi, o.tilt_ratio, S);
+                                                      p, sigma, phi, o.tilt_ratio, Eigen::Matrix3d(D * S * D));
     if (c.defined)
     {
       nlohmann::ordered_json flat = nlohmann::ordered_json::array();
+      const Eigen::Matrix3d C = D * c.covariance * D;
       for (int i = 0; i < 9; ++i)
-        flat.push_back(number(c.covariance(i / 3, i % 3)));
+        flat.push_back(number(C(i / 3, i % 3)));
       j["covariance"] = flat;
-      j["std"] = { number(std::sqrt(c.covariance(0, 0))), number(std::sqrt(c.covariance(1, 1))),
-                   number(std::sqrt(c.covariance(2, 2))) };
+      j["std"] = { number(std::sqrt(C(0, 0))), number(std::sqrt(C(1, 1))), number(std::sqrt(C(2, 2))) };
     }
     else
       j["covariance"] = nullptr;

@@ -17,12 +17,13 @@ namespace sphere_contact_estimator::cli
 /// What `contact_eval slips` was asked for.
 struct SlipsOptions
 {
-  std::vector<double> omega;  ///< WX WY WZ [rad/s], paper frame
-  std::vector<double> vc;     ///< VX VY [m/s], paper frame
+  std::vector<double> omega;  ///< WX WY WZ [rad/s], in `frame`
+  std::vector<double> vc;     ///< VX VY [m/s], in `frame`
   double rolling_radius = 0.0;
   std::optional<double> turn_rate;
   std::optional<double> tilt_ratio;
   double standstill_speed = 1.0e-3;
+  std::string frame = "paper";  ///< of the inputs and outputs: paper (SAE, z down) or ros (REP 103, z up)
 };
 
 /// What `contact_eval brush` was asked for.
@@ -37,6 +38,7 @@ struct BrushOptions
   std::string sliding_law = "coulomb";
   /// --covariance CXX CXY CXPHI CYY CYPHI CPHIPHI: the symmetric covariance of (sigma_x, sigma_y, phi), empty: none
   std::vector<double> covariance;
+  std::string frame = "paper";  ///< of the slips, spin, forces and moment: paper (SAE, z down) or ros (REP 103, z up)
   BrushParameters parameters = accurate();
 
   /// The CLI favours accuracy over speed: resolution 64 (0.03 % of mu F_z for the steady model in

@@ -1,4 +1,5 @@
-// contact_eval: the core models from the command line, JSON on stdout, paper frame, SI units.
+// contact_eval: the core models from the command line, JSON on stdout, SI units; the paper frame, or REP 103 with
+// --frame ros.
 // Bad input: a message on stderr and a non-zero exit status (CLI11's for usage, 2 for values).
 
 // STL

@@ -1,6 +1,8 @@
 // contact_eval as a user runs it: JSON on stdout that matches the core, and clear failures.
 
 // STL
+#include <cstdio>
+#include <random>
 #include <string>
 
 // nlohmann
@@ -12,6 +14,7 @@
 // Package
 #include "../command_outcome.h"
 #include "../core/cylinder_test_support.h"
+#include "sphere_contact_estimator/core/estimator/contact_estimator.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_exact.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_expansion.h"
 
@@ -168,6 +171,75 @@ TEST(ContactEvalSlips, StandstillGivesNullsNotInfinities)
   EXPECT_TRUE(j["sigma_x"].is_null());
   EXPECT_TRUE(j["phi"].is_null());
   EXPECT_FALSE(j["warnings"].empty());
+}
+
+TEST(ContactEvalSlips, FrameRosReadsAsTheTopicsDo)
+{
+  // forward rolling as it reads on a REP 103 topic: omega about +y left, V_C forward
+  const Outcome r = contactEval("slips --omega 0 5.3333333333333333 0 --vc 0.8 0 --rolling-radius 0.15 --frame ros");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["frame"].get<std::string>().rfind("ros", 0), 0u);
+  EXPECT_NEAR(j["V_r_x"].get<double>(), 0.8, 1e-12);
+  EXPECT_NEAR(j["sigma_x"].get<double>(), 0.0, 1e-12);
+  EXPECT_TRUE(j["valid"].get<bool>());
+  // against the estimator behind the node (ROS in, ROS out), at random rolling, sliding and spinning inputs whose
+  // contact frame is the ground's (V_r along +x): the same slips, spins and sliding velocity
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < 20; ++i)
+  {
+    const double R = 0.1, v = 0.5 + std::abs(u(rng)), w_z = 5.0 * u(rng);
+    const Eigen::Vector3d omega(0.0, v / R, w_z);
+    const Eigen::Vector2d vc(v + 0.2 * u(rng), 0.2 * u(rng));
+    EstimatorSettings settings;
+    settings.turn_rate_time_constant = 0.0;
+    settings.tilt_ratio_source = TiltRatioSource::Fixed;
+    settings.tilt_ratio = 0.7;
+    ContactEstimator estimator(settings);
+    EstimatorInput in;
+    in.omega = omega;
+    in.v_contact = Eigen::Vector3d(vc.x(), vc.y(), 0.0);
+    const ContactEstimateData* d = estimator.update(in);
+    ASSERT_TRUE(d);
+    ASSERT_NEAR(d->heading, 0.0, 1e-12);
+    char args[256];
+    std::snprintf(args, sizeof args, "slips --omega %.17g %.17g %.17g --vc %.17g %.17g --rolling-radius %g --tilt-ratio 0.7 --frame ros",
+                  omega.x(), omega.y(), omega.z(), vc.x(), vc.y(), R);
+    const Outcome o = contactEval(args);
+    ASSERT_EQ(o.status, 0) << o.err;
+    const auto k = nlohmann::json::parse(o.out);
+    EXPECT_NEAR(k["sigma_x"].get<double>(), d->slip.x(), 1e-12) << args;
+    EXPECT_NEAR(k["sigma_y"].get<double>(), d->slip.y(), 1e-12) << args;
+    EXPECT_NEAR(k["phi"].get<double>(), d->spin, 1e-9) << args;
+    EXPECT_NEAR(k["phi_gamma"].get<double>(), d->spin_tilt, 1e-9) << args;
+    EXPECT_NEAR(k["V_s_x"].get<double>(), d->sliding_velocity.x(), 1e-12) << args;
+    EXPECT_NEAR(k["V_s_y"].get<double>(), d->sliding_velocity.y(), 1e-12) << args;
+  }
+}
+
+TEST(ContactEvalBrush, FrameRosFlipsTheLateralSlipSpinForceAndMoment)
+{
+  // the same inputs in both frames: sigma_y and phi flip, and with them the covariance's (x, y) and (x, phi) terms
+  const std::string common = "brush --model steady --sigma-x 0.05 --patch-radius 0.05 --stiffness 1.023e8 --load 3000 "
+                             "--friction 1 ";
+  const Outcome paper = contactEval(common + "--sigma-y 0.02 --phi 3.33 --covariance 1e-6 2e-7 1e-5 2e-6 3e-6 0.01");
+  const Outcome ros = contactEval(common + "--sigma-y -0.02 --phi -3.33 --covariance 1e-6 -2e-7 -1e-5 2e-6 3e-6 0.01 --frame ros");
+  ASSERT_EQ(paper.status, 0) << paper.err;
+  ASSERT_EQ(ros.status, 0) << ros.err;
+  const auto p = nlohmann::json::parse(paper.out), r = nlohmann::json::parse(ros.out);
+  EXPECT_EQ(p["frame"].get<std::string>().rfind("paper", 0), 0u);
+  EXPECT_EQ(r["frame"].get<std::string>().rfind("ros", 0), 0u);
+  EXPECT_EQ(r["Fx"].get<double>(), p["Fx"].get<double>());
+  EXPECT_EQ(r["Fy"].get<double>(), -p["Fy"].get<double>());
+  EXPECT_EQ(r["Mz"].get<double>(), -p["Mz"].get<double>());
+  EXPECT_NE(p["Fy"].get<double>(), 0.0);
+  // the covariance of (F_x, F_y, M_z): D C D, D = diag(1, -1, -1)
+  const double sign[9] = { 1, -1, -1, -1, 1, 1, -1, 1, 1 };
+  for (int i = 0; i < 9; ++i)
+    EXPECT_NEAR(r["covariance"][i].get<double>(), sign[i] * p["covariance"][i].get<double>(),
+                1e-9 * std::abs(p["covariance"][i].get<double>()) + 1e-12) << i;
+  EXPECT_NE(contactEval(common + "--sigma-y 0 --phi 0 --frame sae").status, 0);
 }
 
 TEST(ContactEvalBrush, ModelsAgreeWhereTheyShould)
