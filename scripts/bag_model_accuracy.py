@@ -61,7 +61,7 @@ def run(bag_analyze, bag, csv_path, model, settings, params):
     if done.returncode != 0:
         sys.exit("bag_model_accuracy: %s failed:\n%s" % (" ".join(cmd), done.stderr))
     with open(csv_path) as f:
-        return list(csv.DictReader(f))
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
 
 
 def error(row, ref):
@@ -145,7 +145,7 @@ def main():
         n = args.reference_resolution
         if os.path.exists(ref_csv):
             with open(ref_csv) as f:
-                ref = list(csv.DictReader(f))
+                ref = list(csv.DictReader(line for line in f if not line.startswith("#")))
         else:
             ref = run(reference_tool, args.bag, ref_csv, "transient", {"resolution": n}, reference_params)
         half = run(reference_tool, args.bag, os.path.join(tmp, "half.csv"), "transient", {"resolution": n // 2},

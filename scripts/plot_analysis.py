@@ -46,7 +46,10 @@ def load_csv(path):
         raise RuntimeError("%s: %s" % (path, "not a file" if os.path.exists(path) else "no such file"))
     try:
         with open(path) as f:
-            header = [h.strip() for h in f.readline().split(",")]
+            line = f.readline()
+            while line.startswith("#"):  # bag_analyze's record of what made the estimates
+                line = f.readline()
+            header = [h.strip() for h in line.split(",")]
             if header == [""]:
                 raise RuntimeError("%s: empty file (no header line)" % path)
             missing = [c for c in REQUIRED if c not in header]

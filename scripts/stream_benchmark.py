@@ -55,7 +55,7 @@ def run(tool, bag, csv_path, params, settings, brush_model=None):
 
 def read(path):
     with open(path) as f:
-        return list(csv.DictReader(f))
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
 
 
 def segments(path):

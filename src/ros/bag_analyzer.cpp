@@ -2,6 +2,8 @@
 
 // STL
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <memory>
 #include <mutex>
@@ -13,10 +15,12 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <tf2/buffer_core.h>
+#include <dynamic_reconfigure/Config.h>
 #include <tf2_msgs/TFMessage.h>
 
 // Package
 #include "sphere_contact_estimator/ros/bag_writer.h"
+#include "sphere_contact_estimator/ros/config_report.h"
 #include "sphere_contact_estimator/ros/estimate_csv.h"
 #include "sphere_contact_estimator/ros/odometry_estimator.h"
 
@@ -27,6 +31,52 @@ namespace
 const std::string kEstimateTopic = "/contact_estimate";
 const std::string kBrushTopic = "/brush_wrench";
 const std::string kRollingResistanceTopic = "/rolling_resistance_wrench";
+const std::string kParameterTopic = "/contact_estimator/parameter_updates";
+
+// A value of a recorded configuration, NaN if it has none of that name.
+double recorded(const dynamic_reconfigure::Config& c, const std::string& name)
+{
+  for (const auto& d : c.doubles)
+    if (d.name == name)
+      return d.value;
+  return NAN;
+}
+
+// What the bag says the robot was, against what this analysis assumes: the first live estimate's load and patch
+// radius, the last recorded configuration's rolling radius.
+std::vector<std::string> compareWithRecord(rosbag::Bag& in, const EstimatorSettings& s)
+{
+  std::vector<std::string> warnings;
+  const auto differs = [](double a, double b) { return std::isfinite(a) && std::abs(a - b) > 1e-9 * std::max(std::abs(a), std::abs(b)); };
+  char text[320];
+  for (const rosbag::MessageInstance& m : rosbag::View(in, rosbag::TopicQuery(kEstimateTopic)))
+  {
+    const auto e = m.instantiate<ContactEstimate>();
+    if (!e)
+      continue;
+    const double F_z = s.verticalLoad(), a = s.brushParameters().a;
+    if (differs(e->load, F_z) || differs(e->patch_radius, a))
+    {
+      std::snprintf(text, sizeof text, "the bag's estimates (%s) were made with F_z = %.6g N and a = %.6g m; this "
+                                       "analysis has F_z = %.6g N and a = %.6g m: give the robot's --params",
+                    kEstimateTopic.c_str(), e->load, e->patch_radius, F_z, a);
+      warnings.emplace_back(text);
+    }
+    break;
+  }
+  double R = NAN;
+  for (const rosbag::MessageInstance& m : rosbag::View(in, rosbag::TopicQuery(kParameterTopic)))
+    if (const auto c = m.instantiate<dynamic_reconfigure::Config>())
+      R = recorded(*c, "rolling_radius");
+  if (differs(R, s.rolling_radius))
+  {
+    std::snprintf(text, sizeof text, "the bag's recorded configuration (%s) has rolling_radius %.6g m; this analysis "
+                                     "has %.6g m: give the robot's --params",
+                  kParameterTopic.c_str(), R, s.rolling_radius);
+    warnings.emplace_back(text);
+  }
+  return warnings;
+}
 
 std::string odometryTopic(rosbag::View& all, const std::string& requested)
 {
@@ -118,6 +168,7 @@ BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<vo
   if (end < begin)
     throw std::runtime_error("the time range is empty: --start must come before --end");
   result.bag_seconds = (end - begin).toSec();
+  result.warnings = compareWithRecord(in, estimator.estimator().settings());
 
   // The static transforms hold for the whole bag, wherever the range starts.
   tf2::BufferCore tf(ros::Duration(60.0));
@@ -127,7 +178,13 @@ BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<vo
 
   std::unique_ptr<BagWriter> out;  // buffered: rosbag::Bag::write's system calls per message cost 13x the analysis
   if (!o.output.empty())
+  {
     out = std::make_unique<BagWriter>(o.output);
+    // the configuration the estimates were made with, as the live node's reconfigure server publishes it
+    dynamic_reconfigure::Config config;
+    o.config.__toMessage__(config);
+    out->write(kParameterTopic, begin, config);
+  }
   std::ofstream csv_file;
   std::unique_ptr<EstimateCsv> csv;
   if (!o.csv.empty())
@@ -135,11 +192,13 @@ BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<vo
     csv_file.open(o.csv);
     if (!csv_file)
       throw std::runtime_error("cannot write " + o.csv);
-    csv = std::make_unique<EstimateCsv>(csv_file);
+    csv = std::make_unique<EstimateCsv>(
+        csv_file, std::vector<std::string>{ "bag_analyze " + o.input + (o.config_source.empty() ? "" : ", " + o.config_source),
+                                            "configuration: " + configurationText(o.config) });
   }
 
   const std::set<std::string> selected(o.topics.begin(), o.topics.end());
-  const std::set<std::string> ours = { kEstimateTopic, kBrushTopic, kRollingResistanceTopic };
+  const std::set<std::string> ours = { kEstimateTopic, kBrushTopic, kRollingResistanceTopic, kParameterTopic };
   std::set<std::string> replaced;
   const auto copied = [&](const std::string& topic) {
     return out && o.copy_input && (selected.empty() || selected.count(topic));

@@ -9,8 +9,10 @@
 
 namespace sphere_contact_estimator
 {
-EstimateCsv::EstimateCsv(std::ostream& out) : out_(out)
+EstimateCsv::EstimateCsv(std::ostream& out, const std::vector<std::string>& preamble) : out_(out)
 {
+  for (const std::string& line : preamble)
+    out_ << "# " << line << '\n';
   out_ << "stamp,t,rolling_speed,heading,turn_rate,sliding_velocity_x,sliding_velocity_y,slips_defined,slip_x,slip_y,"
           "spin,spin_tilt,spin_turn,tilt_ratio,patch_radius,load,friction,brush_model,brush_model_used,"
           "brush_resolution,brush_fx,brush_fy,brush_mz,sliding_fraction,max_utilisation,brush_error_estimate,brush_flags,"

@@ -141,6 +141,15 @@ int main(int argc, char** argv)
       sce::setParameter(options.config, "sliding_law", sliding_law);
     if (!rr_model.empty())
       options.config.rolling_resistance_model = rr_models.at(rr_model);
+    // what made the estimates, for the output's record
+    options.config_source = "parameters " + params;
+    for (const std::string& s : sets)
+      options.config_source += ", --set " + s;
+    for (const auto& [flag, value] : { std::pair{ "--brush-model", &brush_model }, { "--sliding-law", &sliding_law },
+                                       { "--rolling-resistance-model", &rr_model } })
+      if (!value->empty())
+        options.config_source += std::string(", ") + flag + " " + *value;
+    std::fprintf(stderr, "bag_analyze: %s\n", options.config_source.c_str());
 
     ProgressBar bar(progress == "always" || (progress == "auto" && isatty(STDERR_FILENO)));
     std::error_code ec;
@@ -169,6 +178,9 @@ int main(int argc, char** argv)
       }
       int failed = 0;
       for (const sce::BagJobResult& r : results)
+        for (const std::string& w : r.analysis.warnings)
+          std::cerr << "bag_analyze: warning: " << r.job.input << ": " << w << '\n';
+      for (const sce::BagJobResult& r : results)
         if (!r.ok)
         {
           ++failed;
@@ -182,6 +194,8 @@ int main(int argc, char** argv)
     const auto start = std::chrono::steady_clock::now();
     const sce::BagAnalysisResult r = sce::analyzeBag(options, [&bar](double f) { bar(f); });
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    for (const std::string& w : r.warnings)
+      std::cerr << "bag_analyze: warning: " << w << '\n';
 
     std::printf("bag_analyze: %s, odometry on %s\n", options.input.c_str(), r.odom_topic.c_str());
     std::printf("  messages              %llu odometry, %llu estimates (%llu skipped: no orientation, %llu rejected), "

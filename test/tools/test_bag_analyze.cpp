@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 // ROS
+#include <dynamic_reconfigure/Config.h>
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
@@ -96,7 +97,9 @@ std::vector<std::string> column(const std::string& csv, const std::string& name)
 {
   std::istringstream lines(csv);
   std::string line, cell;
-  std::getline(lines, line);
+  while (std::getline(lines, line) && line.rfind('#', 0) == 0)  // the record of what made the estimates
+  {
+  }
   std::istringstream header(line);
   int index = -1;
   for (int i = 0; std::getline(header, cell, ','); ++i)
@@ -250,7 +253,12 @@ TEST_F(BagAnalyze, CommandLine)
                             "peak brush force", "brush models run" })
     EXPECT_NE(r.out.find(line), std::string::npos) << line << " missing in\n" << r.out;
   const std::string csv = slurp(kDir + "/cli.csv");
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 302);  // header and one row per estimate
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 304);  // the record, the header and one row per estimate
+  // what made the estimates, before the header: the parameter file, the overrides, every parameter by name
+  EXPECT_EQ(csv.rfind("# bag_analyze " + bag + ", parameters " + params + ", --set friction=0.6, --brush-model auto\n", 0), 0u)
+      << csv.substr(0, 300);
+  EXPECT_NE(csv.find("\n# configuration: rolling_radius 0.1, robot_mass 5,"), std::string::npos);
+  EXPECT_NE(csv.find(" friction 0.6,"), std::string::npos);
   EXPECT_NE(csv.find(",0.6,4,"), std::string::npos) << "friction 0.6 and brush model auto in the rows";
   EXPECT_EQ(column(csv, "sliding_law"), std::vector<std::string>(301, "0")) << "eq. (4b), the default (SLIDING_LAW_COULOMB)";
   // the approximation of Sect. 6 on request, said in every row
@@ -274,6 +282,32 @@ TEST_F(BagAnalyze, CommandLine)
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("cannot read bag"), std::string::npos) << r.err;
   EXPECT_NE(runCommand(tool + " -i /nonexistent.bag").status, 0);
+
+  // the output bag records the configuration as the live node's server publishes it; analysed again as another
+  // robot, the bag's own record disagrees, and bag_analyze says so
+  {
+    rosbag::Bag out_bag(kDir + "/cli_out.bag");
+    int configs = 0;
+    for (const rosbag::MessageInstance& m : rosbag::View(out_bag, rosbag::TopicQuery("/contact_estimator/parameter_updates")))
+      if (const auto c = m.instantiate<dynamic_reconfigure::Config>())
+      {
+        ++configs;
+        sce::ContactEstimatorConfig read = sce::ContactEstimatorConfig::__getDefault__();
+        read.__fromMessage__(*c);
+        EXPECT_EQ(read.friction, 0.6);
+        EXPECT_EQ(read.brush_model, 4);
+      }
+    EXPECT_EQ(configs, 1);
+  }
+  r = runCommand(tool + " -i " + kDir + "/cli_out.bag --csv " + kDir + "/cli_again.csv -p " + params + " --set friction=0.6");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << "the same robot: " << r.err;
+  r = runCommand(tool + " -i " + kDir + "/cli_out.bag --csv " + kDir + "/cli_other.csv -p " + params +
+                 " --set robot_mass=3 --set rolling_radius=0.15");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: the bag's estimates (/contact_estimate) were made with F_z = 49.05 N"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("warning: the bag's recorded configuration (/contact_estimator/parameter_updates) has rolling_radius 0.1 m"),
+            std::string::npos) << r.err;
 
   // the figures of the analysis
   r = runCommand("/usr/bin/python3 " + plot + " " + kDir + "/cli.csv --output " + kDir + "/figures");
@@ -369,6 +403,8 @@ TEST_F(BagAnalyze, ManyBagsInParallel)
     std::istringstream lines(csv);
     for (std::string line; std::getline(lines, line);)
     {
+      if (line.rfind('#', 0) == 0)
+        continue;  // the record names the input as given
       std::vector<std::string> cells;
       std::istringstream row(line);
       for (std::string cell; std::getline(row, cell, ',');)

@@ -24,6 +24,7 @@ struct BagAnalysisOptions
   double start = 0.0;               ///< from this many seconds after the bag's first message
   double end = std::numeric_limits<double>::infinity();  ///< up to this many seconds after it
   ContactEstimatorConfig config = ContactEstimatorConfig::__getDefault__();
+  std::string config_source;        ///< where config came from (the parameter file, overrides), for the record
 };
 
 struct BagAnalysisResult
@@ -40,12 +41,17 @@ struct BagAnalysisResult
   double bag_seconds = 0.0;         ///< span of the bag time analysed [s]
   double compute_seconds = 0.0;     ///< wall time in the estimator's update() (the models, their uncertainty) [s]
   RunSummary summary;
+  /// Where the bag's own record disagrees with config: estimates made live with another load or patch radius, or a
+  /// recorded configuration with another rolling radius (these analyses would then be of another robot).
+  std::vector<std::string> warnings;
 };
 
 /// Replays a bag through the node's OdometryEstimator as fast as the machine allows, with the transforms in
 /// the bag's /tf and /tf_static. The output bag has the node's topic names (/contact_estimate, /brush_wrench,
 /// /rolling_resistance_wrench, and the contact frame on /tf), each at its odometry message's bag time, beside
-/// the input topics. progress(fraction) is called now and then. Throws std::runtime_error with a message for
+/// the input topics, and the configuration it ran with (dynamic_reconfigure/Config on
+/// /contact_estimator/parameter_updates at the start, as the live node's server publishes it; in the CSV, as comment
+/// lines before the header). progress(fraction) is called now and then. Throws std::runtime_error with a message for
 /// people (a bag that cannot be read, no odometry topic, an invalid configuration).
 BagAnalysisResult analyzeBag(const BagAnalysisOptions& options, const std::function<void(double)>& progress = {});
 

@@ -1,6 +1,10 @@
 #pragma once
 
 // STL
+#include <string>
+#include <vector>
+
+// STL
 #include <ostream>
 
 // Package
@@ -13,8 +17,8 @@ namespace sphere_contact_estimator
 class EstimateCsv
 {
 public:
-  /// Writes the header line.
-  explicit EstimateCsv(std::ostream& out);
+  /// Writes the header line, after `preamble`'s lines each as a comment ("# ..."): what made the estimates.
+  explicit EstimateCsv(std::ostream& out, const std::vector<std::string>& preamble = {});
   void write(const ContactEstimate& estimate);
 
 private:
