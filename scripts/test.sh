@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # README command 2: install, build, and run every test (gtest and rostest), then the demo in RViz under Xvfb
-# (scripts/rviz_screenshot.sh: RViz subscribes to the contact's topics and draws them without errors).
+# (scripts/rviz_screenshot.sh: RViz subscribes to the contact's topics and draws them without errors), then every
+# command of the README as written (scripts/check_readme.py).
 # Prints ctest's summary and exits non-zero on any failure.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
@@ -31,6 +32,8 @@ print("test cases: %d passed, %d failed, %d skipped" % (passed, failed, skipped)
 PY
 log "the demo in RViz (scripts/rviz_screenshot.sh)"
 "$REPO/scripts/rviz_screenshot.sh" "$WS/output/rviz_demo.png" || rc=1
+log "the README's commands, as written (scripts/check_readme.py)"
+/usr/bin/python3 "$REPO/scripts/check_readme.py" || rc=1
 if [ "$rc" -ne 0 ]; then
   catkin_test_results --verbose "test_results/$PKG" | grep -E 'Summary|Failure|failure' | head -50 || true
   log "tests FAILED"
