@@ -26,7 +26,7 @@
 
 // Package
 #include "sphere_contact_estimator/ContactEstimate.h"
-#include "sphere_contact_estimator/core/estimator/scenario.h"
+#include "scenario.h"
 
 namespace sce = sphere_contact_estimator;
 

@@ -33,7 +33,7 @@
 #include "sphere_contact_estimator/ContactEstimate.h"
 #include "sphere_contact_estimator/ContactEstimatorConfig.h"
 #include "sphere_contact_estimator/ros/bag_analyzer.h"
-#include "sphere_contact_estimator/core/estimator/scenario.h"
+#include "scenario.h"
 
 namespace sce = sphere_contact_estimator;
 

@@ -28,7 +28,7 @@
 #include <tf2_msgs/TFMessage.h>
 
 // Package
-#include "sphere_contact_estimator/core/estimator/scenario.h"
+#include "scenario.h"
 #include "sphere_contact_estimator/ros/bag_analyzer.h"
 #include "sphere_contact_estimator/ros/bag_writer.h"
 

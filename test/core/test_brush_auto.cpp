@@ -13,7 +13,7 @@
 // Package
 #include "brush_test_support.h"
 #include "sphere_contact_estimator/core/brush/brush_auto.h"
-#include "sphere_contact_estimator/core/estimator/scenario.h"
+#include "scenario.h"
 
 namespace sphere_contact_estimator
 {

@@ -21,8 +21,8 @@
 #include "brush_test_support.h"
 #include "sphere_contact_estimator/core/brush/brush_linear.h"
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
-#include "sphere_contact_estimator/core/brush/friction_cap.h"
-#include "sphere_contact_estimator/core/brush/patch_integral.h"
+#include "friction_cap.h"
+#include "patch_integral.h"
 
 namespace sphere_contact_estimator
 {

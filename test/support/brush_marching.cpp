@@ -8,7 +8,7 @@
 #include <boost/math/constants/constants.hpp>
 
 // Package
-#include "sphere_contact_estimator/core/brush/friction_cap.h"
+#include "friction_cap.h"
 
 namespace sphere_contact_estimator::test
 {

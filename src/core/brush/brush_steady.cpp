@@ -10,7 +10,7 @@
 #include <boost/math/constants/constants.hpp>
 
 // Package
-#include "sphere_contact_estimator/core/brush/patch_integral.h"
+#include "patch_integral.h"
 #include "sphere_contact_estimator/core/brush/rolling_frame.h"
 
 namespace sphere_contact_estimator

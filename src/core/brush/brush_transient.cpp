@@ -11,8 +11,8 @@
 // Package
 #include "sphere_contact_estimator/core/brush/bristle_path.h"
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
-#include "sphere_contact_estimator/core/brush/friction_cap.h"
-#include "sphere_contact_estimator/core/brush/patch_integral.h"
+#include "friction_cap.h"
+#include "patch_integral.h"
 #include "sphere_contact_estimator/core/brush/rolling_frame.h"
 #include "lattice/bristle_advance.h"
 

@@ -1,4 +1,4 @@
-#include "sphere_contact_estimator/core/brush/patch_integral.h"
+#include "patch_integral.h"
 
 // STL
 #include <algorithm>

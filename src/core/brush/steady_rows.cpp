@@ -4,7 +4,7 @@
 #include <cmath>
 
 // Package
-#include "sphere_contact_estimator/core/brush/patch_integral.h"
+#include "patch_integral.h"
 
 namespace sphere_contact_estimator
 {

@@ -1,4 +1,4 @@
-#include "sphere_contact_estimator/core/estimator/scenario.h"
+#include "scenario.h"
 
 // STL
 #include <cmath>
