@@ -11,11 +11,11 @@
 #include <stdexcept>
 
 // ROS
+#include <dynamic_reconfigure/Config.h>
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <tf2/buffer_core.h>
-#include <dynamic_reconfigure/Config.h>
 #include <tf2_msgs/TFMessage.h>
 
 // Package

@@ -1,11 +1,9 @@
 #pragma once
 
 // STL
+#include <ostream>
 #include <string>
 #include <vector>
-
-// STL
-#include <ostream>
 
 // Package
 #include "sphere_contact_estimator/ContactEstimate.h"

@@ -129,12 +129,7 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   o.stamp = in.stamp;
   const bool first = !have_last_;
   o.dt = advanceClock(in.stamp, o.flags);
-  if (!have_heading_ && speed < settings_.standstill_speed && std::isfinite(in.body_heading))
-  {
-    heading_ = in.body_heading;  // standing: the robot's own yaw until it rolls (a reset forgets the old heading)
-    have_heading_ = true;
-  }
-  followHeading(V_r, speed, o.dt, first, o.flags);
+  followHeading(V_r, speed, in.body_heading, o.dt, first, o.flags);
   judgeRolling(in, speed, o);
   const double psi_dot =
       settings_.tilt_ratio_source == TiltRatioSource::Fixed ? (1.0 - settings_.tilt_ratio) * in.omega.z() : turn_rate_;
@@ -185,7 +180,8 @@ double ContactEstimator::advanceClock(double stamp, std::uint32_t& flags)
   return dt;
 }
 
-void ContactEstimator::followHeading(const Eigen::Vector2d& V_r, double speed, double dt, bool first, std::uint32_t& flags)
+void ContactEstimator::followHeading(const Eigen::Vector2d& V_r, double speed, double body_heading, double dt, bool first,
+                                     std::uint32_t& flags)
 {
   // the contact frame: x along V_r, held at standstill; psi_dot from its heading
   const bool rolling = speed >= settings_.standstill_speed;
@@ -214,6 +210,11 @@ void ContactEstimator::followHeading(const Eigen::Vector2d& V_r, double speed, d
   }
   else
   {
+    if (!have_heading_ && std::isfinite(body_heading))
+    {
+      heading_ = body_heading;  // standing: the robot's own yaw until it rolls (a reset forgets the old heading)
+      have_heading_ = true;
+    }
     turn_rate_ = 0.0;  // the frame does not turn at standstill
     flags |= estimate_flags::kStandstill;
   }

@@ -164,7 +164,8 @@ private:
   double advanceClock(double stamp, std::uint32_t& flags);
   void judgeMotion(const EstimatorInput& in, ContactEstimateData& o) const;
   void judgeRolling(const EstimatorInput& in, double speed, ContactEstimateData& o);
-  void followHeading(const Eigen::Vector2d& V_r, double speed, double dt, bool first, std::uint32_t& flags);
+  void followHeading(const Eigen::Vector2d& V_r, double speed, double body_heading, double dt, bool first,
+                     std::uint32_t& flags);
   ContactKinematics contactKinematics(const EstimatorInput& in, double psi_dot, ContactEstimateData& out) const;
   void runBrush(const ContactKinematics& kin, double dt, double omega_z, ContactEstimateData& out);
   void runRollingResistance(double speed, ContactEstimateData& out) const;
