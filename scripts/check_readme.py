@@ -23,7 +23,8 @@ import tempfile
 import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-ERROR_MARKERS = ("[ERROR]", "RLException", "Traceback", "ERROR:")
+# (a launch that ends by itself ends quietly: no required node reported dead)
+ERROR_MARKERS = ("[ERROR]", "RLException", "Traceback", "ERROR:", "REQUIRED process")
 
 
 def blocks(text):

@@ -1,6 +1,6 @@
 // demo_scenario: the odometry of a spherical robot manoeuvre (accelerate, cruise, turn, brake with slip,
 // spin in place), with sensor noise, published into the contact estimator; it records every estimate,
-// prints a summary per phase, writes a CSV, and shuts the launch down when done.
+// prints a summary per phase, writes a CSV, and ends the launch when done (endLaunch).
 //
 // Private parameters: rate [Hz], rolling_radius [m], noise_omega [rad/s], noise_velocity [m/s], seed,
 // frame_id, child_frame_id, publish_tf, output_csv (empty: none), subscriber_timeout [s], odom_subscribers
@@ -10,13 +10,18 @@
 
 // STL
 #include <algorithm>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <random>
 #include <string>
 #include <vector>
+
+// POSIX
+#include <unistd.h>
 
 // ROS
 #include <geometry_msgs/TransformStamped.h>
@@ -90,6 +95,28 @@ struct PhaseStats
   double speed = 0.0, slip_x = 0.0, spin = 0.0, brush_force_max = 0.0, sliding_max = 0.0, rr_force = 0.0, mu_max = 0.0;
   unsigned brush_flags = 0, rr_flags = 0, flags = 0;
 };
+
+// The demo's normal end. roslaunch ends a launch by itself only when a required node ends, and reports that in red
+// ("REQUIRED process has died"), as if it were a fault; a Ctrl-C ends it quietly. So, when the launch that started this
+// node is roslaunch, the node asks it to end as Ctrl-C would and waits to be stopped with the rest; otherwise (or if
+// that does not come) it ends, and the launch with it, as its required node.
+void endLaunch()
+{
+  const pid_t parent = getppid();
+  std::ifstream cmdline("/proc/" + std::to_string(parent) + "/cmdline");
+  const std::string command((std::istreambuf_iterator<char>(cmdline)), std::istreambuf_iterator<char>());
+  if (command.find("roslaunch") == std::string::npos || kill(parent, SIGINT) != 0)
+  {
+    std::printf("the demo is over (roslaunch reports its required node's end in red: that is how the demo ends)\n");
+    return;
+  }
+  std::printf("the demo is over: ending the launch\n");
+  std::fflush(stdout);
+  const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(20.0);
+  while (ros::ok() && ros::WallTime::now() < give_up)
+    ros::WallDuration(0.05).sleep();
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -264,13 +291,11 @@ int main(int argc, char** argv)
   if (csv.is_open())
     std::printf("estimates written to %s\n", csv_path.c_str());
   const bool complete = received == samples.size();
-  // roslaunch ends a launch only when a required node ends, and says so in red: here that is the demo's normal end
-  if (complete && ends_launch)
-    std::printf("the demo is over: roslaunch now reports \"REQUIRED process [demo_scenario] has died ... finished "
-                "cleanly\" and stops the estimator; that is how the demo ends, not an error\n");
   std::fflush(stdout);
   if (!complete)
     ROS_ERROR("demo_scenario: %zu of %zu estimates missing", samples.size() - received, samples.size());
+  else if (ends_launch)
+    endLaunch();
   ros::shutdown();
   return complete ? 0 : 2;
 }

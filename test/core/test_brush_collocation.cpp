@@ -16,7 +16,7 @@
 
 // Package
 #include "brush_test_support.h"
-#include "sphere_contact_estimator/core/brush/bristle_path.h"
+#include "bristle_path.h"
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
 
 namespace sphere_contact_estimator

@@ -16,7 +16,7 @@
 #include <Eigen/Cholesky>
 
 // Package
-#include "sphere_contact_estimator/core/brush/pressure_law.h"
+#include "pressure_law.h"
 #include "sphere_contact_estimator/core/estimator/contact_estimator.h"
 #include "sphere_contact_estimator/core/estimator/motion_noise.h"
 

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <random>
 #include <gtest/gtest.h>
-#include "sphere_contact_estimator/core/brush/steady_lag.h"
+#include "steady_lag.h"
 
 using namespace sphere_contact_estimator;
 

@@ -4,6 +4,7 @@
 // the body's yaw rate published as the shell's omega, and a reset's heading.
 
 // STL
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -20,6 +21,7 @@
 // ROS
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <dynamic_reconfigure/Config.h>
+#include <dynamic_reconfigure/ConfigDescription.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Log.h>
@@ -159,6 +161,38 @@ TEST_F(FirstHour, AnUnknownParameterIsAWarningThatNamesTheNearestAndTheConfigura
   std::system(("kill -INT $(cat " + pid + ") 2> /dev/null; rm -f " + pid + " " + out).c_str());
   EXPECT_TRUE(warned) << text;
   EXPECT_TRUE(configured) << text;
+}
+
+TEST_F(FirstHour, EveryEnumIsADropDownInTheDescriptionRqtReads)
+{
+  // rqt_reconfigure draws a drop-down for a parameter whose published edit_method is set, and fills it with the
+  // 'name' and 'value' of each entry of its 'enum' list: the description the node latches, as rqt receives it
+  dynamic_reconfigure::ConfigDescription description;
+  bool received = false;
+  std::mutex mutex;
+  ros::Subscriber sub = nh.subscribe<dynamic_reconfigure::ConfigDescription>(
+      "/contact_estimator/parameter_descriptions", 1, [&](const dynamic_reconfigure::ConfigDescription::ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(mutex);
+        description = *m;
+        received = true;
+      });
+  ASSERT_TRUE(sce::test::waitFor(mutex, [&] { return received; }, 10.0, 0.01)) << "no description latched";
+  std::lock_guard<std::mutex> lock(mutex);
+  std::vector<std::string> drop_downs;
+  for (const auto& group : description.groups)
+    for (const auto& parameter : group.parameters)
+      if (!parameter.edit_method.empty())
+      {
+        EXPECT_EQ(parameter.type, "int") << parameter.name;
+        const std::vector<sce::EnumValue> values = sce::enumValues(parameter.edit_method);
+        EXPECT_GE(values.size(), 2u) << parameter.name << ": " << parameter.edit_method;
+        EXPECT_NE(parameter.edit_method.find("'enum'"), std::string::npos) << parameter.edit_method;
+        drop_downs.push_back(parameter.name);
+      }
+  // the .cfg's five enums, and only they
+  std::sort(drop_downs.begin(), drop_downs.end());
+  EXPECT_EQ(drop_downs, (std::vector<std::string>{ "brush_model", "pressure", "rolling_resistance_model", "sliding_law",
+                                                    "tilt_ratio_source" }));
 }
 
 TEST_F(FirstHour, TheShippedParameterFileLoadsWithDynparamAndEveryEnumNameWorks)

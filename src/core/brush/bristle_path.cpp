@@ -1,4 +1,4 @@
-#include "sphere_contact_estimator/core/brush/bristle_path.h"
+#include "bristle_path.h"
 
 // STL
 #include <algorithm>

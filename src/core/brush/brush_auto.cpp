@@ -7,8 +7,9 @@
 // Boost
 #include <boost/math/constants/constants.hpp>
 
-// Package
-#include "sphere_contact_estimator/core/brush/rolling_frame.h"
+// The brush library's private rooms
+#include "rolling_frame.h"
+#include "steady_lag.h"
 
 namespace sphere_contact_estimator
 {
@@ -38,11 +39,13 @@ double longestPath(const BrushParameters& p)
 }  // namespace
 
 BrushAuto::BrushAuto(const BrushParameters& parameters)
-  : BrushModel(parameters), linear_(parameters), steady_(parameters), lag_(2.0 * parameters.a, parameters.pressure)
+  : BrushModel(parameters), linear_(parameters), steady_(parameters), lag_(std::make_unique<SteadyLag>(2.0 * parameters.a, parameters.pressure))
 {
   transient_resolution_ = configured_resolution_ = std::min(p_.resolution, kMaxTransientResolution);
   transient_ = std::make_unique<BrushTransient>(withResolution(p_, transient_resolution_));
 }
+
+BrushAuto::~BrushAuto() = default;
 
 void BrushAuto::rotateFrame(double alpha)
 {
@@ -51,7 +54,7 @@ void BrushAuto::rotateFrame(double alpha)
     finer_->rotateFrame(alpha);
   // a force, physical, in the turned axes (x' = R(-alpha) x)
   const double c = std::cos(alpha), s = std::sin(alpha);
-  lag_.rotate(alpha);
+  lag_->rotate(alpha);
   const Eigen::Vector2d offset(c * offset_.F_x + s * offset_.F_y, -s * offset_.F_x + c * offset_.F_y);
   offset_.F_x = offset.x();
   offset_.F_y = offset.y();
@@ -77,7 +80,7 @@ void BrushAuto::reset()
   finer_.reset();
   in_transient_ = false;
   steady_distance_ = 0.0;
-  lag_.reset();
+  lag_->reset();
   have_check_ = false;
   lag_travel_ = 0.0;
   have_rolling_ = false;
@@ -138,14 +141,14 @@ void BrushAuto::stepLag(const Slips& s, const Eigen::Vector2d& sigma, const Roll
   // moves): the forces then follow a change of the slips as slowly as the slowest kernel, not as the slips' own
   // (measured on random histories: the slips' kernel fell 20 % short on a ramp with tilt)
   const double share = p_.sliding_law == SlidingLaw::Coulomb && !split ? 1.0 : spin_share;
-  lag_.step(slip, spin, split, share, travel, linear_bound_);
+  lag_->step(slip, spin, split, share, travel, linear_bound_);
 }
 
 BrushForces BrushAuto::steadyFamily(const Slips& s, const Eigen::Vector2d& sigma, double budget, BrushModelKind& model)
 {
   // the linear model's bound at the largest inputs the patch still remembers: a lagging state carries the
   // sliding of its past inputs, which the bound at the current ones may understate
-  const double bound = std::max(linear_bound_, lag_.largestHeld());
+  const double bound = std::max(linear_bound_, lag_->largestHeld());
   if (bound <= budget)
   {
     model = BrushModelKind::Linear;
@@ -164,7 +167,7 @@ BrushForces BrushAuto::steadyFamily(const Slips& s, const Eigen::Vector2d& sigma
   spent_ += stats.work;
   cost_ += kSteadyPathCost * stats.paths;
   // the work budget spent before the target: the linear answer where its bound is the smaller
-  const double linear_bound = std::max(linear_bound_, lag_.largestHeld());
+  const double linear_bound = std::max(linear_bound_, lag_->largestHeld());
   if ((f.flags & brush_flags::kAccuracyNotMet) && linear_bound < f.error_estimate)
   {
     model = BrushModelKind::Linear;
@@ -277,7 +280,7 @@ BrushAuto::SteadyCheck BrushAuto::checkSteady(const Slips& s, const Eigen::Vecto
   c.steady = s.defined;
   if (!s.defined)
   {
-    lag_.reset();
+    lag_->reset();
     have_check_ = false;
     lag_travel_ = 0.0;
     return c;
@@ -308,7 +311,7 @@ BrushAuto::SteadyCheck BrushAuto::checkSteady(const Slips& s, const Eigen::Vecto
   if (p_.tilt && a_phi_gamma > 0.0)
     stretch = a_phi_gamma < 1.0 ? std::asin(a_phi_gamma) / a_phi_gamma : 0.5 * boost::math::double_constants::pi;
   stepLag(s, sigma, frame, target, c.steady, travel / stretch);
-  c.lag = limit > 0.0 ? lag_.lag() / limit : 0.0;
+  c.lag = limit > 0.0 ? lag_->lag() / limit : 0.0;
   if (!(c.lag <= 0.5 * target))
     c.steady = false;
   last_check_ = c;
@@ -354,7 +357,7 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
   transient_->setWorkBudget(remaining());
   BrushForces out = transient_->update(kin, dt);
   spent_ += out.work;
-  entry_error_ *= lag_.slowest(s.V_r * dt / (0.5 * longestPath(p_) / p_.a));  // the slowest renewal
+  entry_error_ *= lag_->slowest(s.V_r * dt / (0.5 * longestPath(p_) / p_.a));  // the slowest renewal
   out.error_estimate += entry_error_;
   resolution = transient_resolution_;
   cost_ += transientStepCost(resolution) * std::max(1.0, std::ceil(s.V_r * dt / (p_.a / resolution)));

@@ -10,7 +10,7 @@
 #include "sphere_contact_estimator/core/brush/brush_linear.h"
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
 #include "sphere_contact_estimator/core/brush/brush_transient.h"
-#include "sphere_contact_estimator/core/brush/rolling_frame.h"
+#include "rolling_frame.h"
 
 namespace sphere_contact_estimator
 {

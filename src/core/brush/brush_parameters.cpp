@@ -1,5 +1,5 @@
 #include "sphere_contact_estimator/core/brush/brush_parameters.h"
-#include "sphere_contact_estimator/core/brush/pressure_law.h"
+#include "pressure_law.h"
 #include "sphere_contact_estimator/core/numerics/parameter_check.h"
 
 // STL

@@ -9,9 +9,10 @@
 // Boost
 #include <boost/math/constants/constants.hpp>
 
-// Package
+// The brush library's private rooms
+#include "bristle_path.h"
 #include "patch_integral.h"
-#include "sphere_contact_estimator/core/brush/rolling_frame.h"
+#include "rolling_frame.h"
 
 namespace sphere_contact_estimator
 {

@@ -9,12 +9,15 @@
 #include <boost/math/constants/constants.hpp>
 
 // Package
-#include "sphere_contact_estimator/core/brush/bristle_path.h"
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
+
+// The brush library's private rooms
+#include "bristle_path.h"
 #include "friction_cap.h"
-#include "patch_integral.h"
-#include "sphere_contact_estimator/core/brush/rolling_frame.h"
 #include "lattice/bristle_advance.h"
+#include "patch_integral.h"
+#include "rolling_frame.h"
+#include "transient_rows.h"
 
 namespace sphere_contact_estimator
 {
@@ -109,10 +112,17 @@ bool sameInputs(const ContactKinematics& a, const ContactKinematics& b)
 }
 }  // namespace
 
-BrushTransient::BrushTransient(const BrushParameters& parameters) : BrushModel(parameters)
+BrushTransient::BrushTransient(const BrushParameters& parameters)
+  : BrushModel(parameters), rows_(std::in_place)
 {
   allocate();
 }
+
+BrushTransient::~BrushTransient() = default;
+BrushTransient::BrushTransient(const BrushTransient&) = default;
+BrushTransient::BrushTransient(BrushTransient&&) noexcept = default;
+BrushTransient& BrushTransient::operator=(const BrushTransient&) = default;
+BrushTransient& BrushTransient::operator=(BrushTransient&&) noexcept = default;
 
 bool BrushTransient::setParameters(const BrushParameters& parameters)
 {
@@ -142,7 +152,7 @@ void BrushTransient::rotateFrame(double alpha)
   held_travel_ = 0.0;
   have_last_kin_ = false;
   clearSpreadWindow();  // the phases were in the old axes
-  rows_.invalidate();
+  rows_->invalidate();
   const Eigen::Matrix2d Q = rotation(-alpha);  // components in axes turned by alpha
   R_ = Q * R_;
   o_ = Q * o_;
@@ -214,7 +224,7 @@ bool BrushTransient::coarsen()
     }
   // the scratch arrays the same size again (recentre swaps them in); shrinking keeps their storage
   resizeState(size, true);
-  rows_.reset();  // the rows moved: the control variate is evaluated again
+  rows_->reset();  // the rows moved: the control variate is evaluated again
   clearSpreadWindow();  // the spreads were of the finer lattice
   recentre();
   return true;
@@ -235,7 +245,7 @@ void BrushTransient::reset()
   held_travel_ = 0.0;
   fill_travel_ = 0.0;
   clearSpreadWindow();
-  rows_.reset();
+  rows_->reset();
   const double a2 = p_.a * p_.a;
   for (int j = 0; j < w_; ++j)
     for (int i = 0; i < w_; ++i)
@@ -281,10 +291,10 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   have_last_kin_ = true;
   const Slips slips = computeSlips(kin, p_.standstill_speed);
   // the rows' correction within what the work budget leaves after the lattice's steps and the sums
-  work_ += rows_.update(p_, slips, { R_, position(0, 0), h_, w_ }, held, travel, fill_travel_,
+  work_ += rows_->update(p_, slips, { R_, position(0, 0), h_, w_ }, held, travel, fill_travel_,
                         work_budget_ - work_ - static_cast<long>(w_) * w_ * kPointWork);
   // the rows' correction holds the streaks once every bristle in the patch entered under the inputs it is of
-  const bool corrected = held_travel_ >= 2.0 * p_.a && rows_.of(slips, p_);
+  const bool corrected = held_travel_ >= 2.0 * p_.a && rows_->of(slips, p_);
   streak_estimate_ = corrected ? 0.0 : streakBound(slips);
   double fixed = 0.0, spread = 0.0;
   const BrushForces g = sums(fixed, spread);
@@ -753,7 +763,7 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
   // error across the rows twice (0.1 % of mu F_z at resolution 128 with the uniform pressure). Without load, the
   // patch area over the bristle count.
   const auto weight = [&](int k) {
-    const double total = rows_.load(k, p_.F_z);
+    const double total = rows_->load(k, p_.F_z);
     return load[k] > 0.0 ? total / load[k] : boost::math::double_constants::pi * p_.a * p_.a / std::max(count[k], 1);
   };
   const auto sum = [&](int k) {
@@ -762,7 +772,7 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
     g.F_x = p_.k * F[k].x() * dA;
     g.F_y = p_.k * F[k].y() * dA;
     g.M_z = p_.k * M_z[k] * dA;
-    const Eigen::Vector3d c = rows_.correction(k, p_.a);
+    const Eigen::Vector3d c = rows_->correction(k, p_.a);
     g.F_x += c.x();
     g.F_y += c.y();
     g.M_z += c.z();
@@ -786,7 +796,7 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
   fixed = streak_estimate_;
   if (scale > 0.0)
     fixed += p_.k * step_error * weight(0) / scale;
-  fixed += rows_.error(p_.pressure);
+  fixed += rows_->error(p_.pressure);
   spread = 0.0;
   if (scale > 0.0)
     for (int k = 1; k <= 4; ++k)

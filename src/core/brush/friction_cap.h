@@ -8,7 +8,7 @@
 
 // Package
 #include "sphere_contact_estimator/core/brush/brush_parameters.h"
-#include "sphere_contact_estimator/core/brush/pressure_law.h"
+#include "pressure_law.h"
 
 namespace sphere_contact_estimator
 {

@@ -5,7 +5,7 @@
 #include <functional>
 
 // Package
-#include "sphere_contact_estimator/core/brush/bristle_path.h"
+#include "bristle_path.h"
 
 namespace sphere_contact_estimator
 {

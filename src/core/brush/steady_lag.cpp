@@ -1,4 +1,4 @@
-#include "sphere_contact_estimator/core/brush/steady_lag.h"
+#include "steady_lag.h"
 
 // STL
 #include <algorithm>
@@ -8,7 +8,7 @@
 #include <boost/math/constants/constants.hpp>
 
 // Package
-#include "sphere_contact_estimator/core/brush/pressure_law.h"
+#include "pressure_law.h"
 #include "sphere_contact_estimator/core/numerics/quadrature_rules.h"
 
 namespace sphere_contact_estimator

@@ -1,4 +1,4 @@
-#include "sphere_contact_estimator/core/brush/steady_rows.h"
+#include "steady_rows.h"
 
 // STL
 #include <cmath>

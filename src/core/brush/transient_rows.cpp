@@ -1,4 +1,4 @@
-#include "sphere_contact_estimator/core/brush/transient_rows.h"
+#include "transient_rows.h"
 
 // STL
 #include <algorithm>
@@ -9,8 +9,8 @@
 
 // Package
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
-#include "sphere_contact_estimator/core/brush/pressure_law.h"
-#include "sphere_contact_estimator/core/brush/rolling_frame.h"
+#include "pressure_law.h"
+#include "rolling_frame.h"
 
 namespace sphere_contact_estimator
 {

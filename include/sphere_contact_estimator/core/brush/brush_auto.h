@@ -8,11 +8,13 @@
 #include "sphere_contact_estimator/core/brush/brush_linear.h"
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
 #include "sphere_contact_estimator/core/brush/brush_transient.h"
-#include "sphere_contact_estimator/core/brush/rolling_frame.h"
-#include "sphere_contact_estimator/core/brush/steady_lag.h"
 
 namespace sphere_contact_estimator
 {
+// the solver's private rooms (src/core/brush/rolling_frame.h, steady_lag.h)
+class RollingFrame;
+class SteadyLag;
+
 /// Per update, the cheapest brush model whose error estimate at the point in hand meets
 /// BrushParameters::accuracy_target (a fraction of mu F_z), and that estimate in BrushForces::error_estimate.
 ///
@@ -47,6 +49,7 @@ class BrushAuto : public BrushModel
 {
 public:
   explicit BrushAuto(const BrushParameters& parameters);
+  ~BrushAuto() override;
 
   BrushForces update(const ContactKinematics& kinematics, double dt) override;
   void reset() override;
@@ -123,7 +126,7 @@ private:
   long spent_ = 0;              // work of the update under way
   bool in_transient_ = false;
   double steady_distance_ = 0.0;  // travelled while the steady conditions held, in transient mode
-  SteadyLag lag_;  // of the steady state behind the true one
+  std::unique_ptr<SteadyLag> lag_;  // of the steady state behind the true one
   BrushForces steady_cache_;    // the steady model at this update's inputs, if stepLag evaluated it
   bool steady_cached_ = false;
   double linear_bound_ = 0.0;   // BrushLinear::errorBound at this update's inputs

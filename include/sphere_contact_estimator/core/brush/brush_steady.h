@@ -4,11 +4,13 @@
 #include <functional>
 
 // Package
-#include "sphere_contact_estimator/core/brush/bristle_path.h"
 #include "sphere_contact_estimator/core/brush/brush_model.h"
+#include "sphere_contact_estimator/core/brush/coulomb_stepper.h"
 
 namespace sphere_contact_estimator
 {
+struct BristleField;  // the solver's dimensionless problem (private: src/core/brush/bristle_path.h)
+
 /// Steady-state bristle field with limited friction (Romano et al. Sects. 3, 4, 6), to a requested accuracy.
 ///
 /// In the frame where epsilon = (0, 1) the characteristics (bristle paths) are the lines y = const (eq. 18a)
@@ -63,7 +65,8 @@ public:
                        const Visitor& visit) const;
 
   /// The dimensionless problem of these slips (BristleField): deflections in units of mu q_z(0) / k, lengths
-  /// in units of a. False (and no field) when there is nothing to integrate: no friction or no load.
+  /// in units of a. False (and no field) when there is nothing to integrate: no friction or no load. For the package's
+  /// own tests: the type is the solver's, not installed.
   bool field(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi, BristleField& out) const;
 
   /// Largest work (PathIntegrals::work) one evaluation may do; beyond, kAccuracyNotMet.

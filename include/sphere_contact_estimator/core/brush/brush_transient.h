@@ -12,11 +12,12 @@
 // Package
 #include "sphere_contact_estimator/core/brush/brush_model.h"
 #include "sphere_contact_estimator/core/brush/contact_kinematics.h"
-#include "sphere_contact_estimator/core/brush/transient_rows.h"
+#include "sphere_contact_estimator/core/indirect.h"
 
 namespace sphere_contact_estimator
 {
 class FrictionCap;
+class TransientRows;  // the rows' control variate (private: src/core/brush/transient_rows.h)
 
 /// How BrushTransient advances its bristles without tilt: each over the whole update along its path (the default), or
 /// all of them by half a lattice spacing per substep (the lattice's first scheme, which tilt still uses; kept to compare
@@ -81,6 +82,11 @@ class BrushTransient : public BrushModel
 {
 public:
   explicit BrushTransient(const BrushParameters& parameters);
+  ~BrushTransient() override;
+  BrushTransient(const BrushTransient&);  // a copy is a snapshot of the bristles
+  BrushTransient(BrushTransient&&) noexcept;
+  BrushTransient& operator=(const BrushTransient&);
+  BrushTransient& operator=(BrushTransient&&) noexcept;
 
   BrushForces update(const ContactKinematics& kinematics, double dt) override;
   void reset() override;
@@ -239,7 +245,7 @@ private:
   Eigen::Vector2d V_r_ = Eigen::Vector2d::Zero();
   double omega_gamma_ = 0.0;
   double streak_estimate_ = 0.0;  // streakBound of the last update's inputs
-  TransientRows rows_;             // the rows' control variate (no tilt, rows along the rolling direction)
+  Indirect<TransientRows> rows_;  // the rows' control variate (no tilt, rows along the rolling direction)
   ContactKinematics last_kin_;     // the inputs of the last update, and how far the patch rolled under them
   bool have_last_kin_ = false;
   double held_travel_ = 0.0;

@@ -6,7 +6,7 @@
 // Package
 #include "sphere_contact_estimator/core/brush/brush_parameters.h"
 #include "sphere_contact_estimator/core/brush/contact_kinematics.h"
-#include "sphere_contact_estimator/core/brush/pressure_law.h"
+#include "pressure_law.h"
 
 namespace sphere_contact_estimator::lattice
 {

@@ -5,7 +5,7 @@
 #include <complex>
 
 // Package
-#include "sphere_contact_estimator/core/brush/bristle_path.h"
+#include "bristle_path.h"
 
 /// The Taylor series along a bristle path that both sliding laws build their events and adhesion pieces from
 /// (private to the path solver).

@@ -8,7 +8,8 @@
 
 // Package
 #include "sphere_contact_estimator/core/brush/brush_parameters.h"
-#include "sphere_contact_estimator/core/brush/pressure_law.h"
+#include "sphere_contact_estimator/core/brush/coulomb_stepper.h"
+#include "pressure_law.h"
 
 namespace sphere_contact_estimator
 {
@@ -54,17 +55,6 @@ bool makeBristleField(const BrushParameters& p, const std::complex<double>& sigm
 
 /// The bound at the patch centre, mu q_z(0) / k [m]: the unit of the field's deflections.
 double deflectionUnit(const BrushParameters& p);
-
-/// How solvePath steps a sliding piece under eq. (4b) (SlidingLaw::Coulomb).
-enum class CoulombStepper
-{
-  /// Stiff collocation in the frame of the bristle's own direction (path/coulomb_collocation.h) wherever it can go on,
-  /// the general stepper beyond (near a spin pole where the collocation's steps would be tiny): the default.
-  Collocation,
-  /// The general stepper (Magnus steps of the half-angle system, path/coulomb_sliding.h) on every piece: an independent
-  /// solution to check the collocation's answers and estimates against.
-  General,
-};
 
 /// No limit on a path's work (solvePath).
 constexpr long kUnlimitedWork = 1L << 62;

@@ -6,7 +6,7 @@
 // Package
 #include "sphere_contact_estimator/core/brush/brush_parameters.h"
 #include "sphere_contact_estimator/core/brush/contact_kinematics.h"
-#include "sphere_contact_estimator/core/brush/steady_rows.h"
+#include "steady_rows.h"
 
 namespace sphere_contact_estimator
 {

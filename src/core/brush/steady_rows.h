@@ -4,7 +4,7 @@
 #include <complex>
 
 // Package
-#include "sphere_contact_estimator/core/brush/bristle_path.h"
+#include "bristle_path.h"
 
 namespace sphere_contact_estimator
 {
