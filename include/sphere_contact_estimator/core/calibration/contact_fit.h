@@ -1,0 +1,119 @@
+#pragma once
+
+// STL
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+// Eigen
+#include <Eigen/Core>
+
+// Package
+#include "sphere_contact_estimator/core/calibration/calibration_sample.h"
+#include "sphere_contact_estimator/core/estimator/estimator_settings.h"
+
+namespace sphere_contact_estimator
+{
+/// What the models predict for a run: the estimator replayed over every sample with one set of parameters (the node's
+/// estimator, so transients, the frame and the turn rate are as the node has them).
+struct Prediction
+{
+  std::vector<Eigen::Vector2d> force;  ///< brush + rolling resistance on the robot, ground frame [N]
+  std::vector<double> sliding;         ///< the brush model's sliding share of the patch
+  std::vector<Eigen::Vector2d> slip;   ///< (sigma_x, sigma_y), ROS contact frame
+  std::vector<double> spin;            ///< phi, ROS contact frame [1/m]
+  std::vector<double> tilt_ratio;      ///< chi_gamma
+  std::vector<double> speed;           ///< rolling speed V_r [m/s]
+  std::vector<double> heading;         ///< of the contact frame in the ground frame [rad]
+  std::vector<double> rolling_resistance;  ///< F_R L, against the rolling direction [N]
+  std::vector<std::uint32_t> flags;    ///< the estimate's flags (estimate_flags)
+  std::vector<std::uint8_t> answered;  ///< the estimator answered (input finite and possible)
+};
+Prediction predictForces(const std::vector<CalibrationSample>& samples, const EstimatorSettings& settings);
+
+/// Why a sample does not enter the fit, counted in FitResult::rejected.
+enum class Rejection : int
+{
+  NoImu = 0,      ///< no IMU sample paired with the message
+  Unanswered,     ///< the estimator refused the input (not finite, impossible)
+  Standstill,     ///< slips undefined (V_r below standstill_speed): the brush force is the bristles' history
+  Reset,          ///< a gap or a time jump reset the state here
+  WithinNoise,    ///< the motion is within the odometry's declared noise (a parked robot)
+  Count
+};
+const char* toString(Rejection r);
+
+/// The parameters the fit can take: the brush's bristle stiffness k (with a fixed patch radius a the data determine
+/// k a^3, through the slip stiffness C_sigma = 8/3 k a^3 of the parabolic pressure) and friction mu.
+enum class FitParameter : int
+{
+  BristleStiffness = 0,
+  Friction,
+  Count
+};
+const char* parameterName(FitParameter p);  ///< as in the node's parameter file
+
+struct FitOptions
+{
+  std::array<bool, static_cast<int>(FitParameter::Count)> fit{ { true, true } };
+  /// Huber loss: residuals beyond this many standard deviations of the measured force count linearly (IMU spikes,
+  /// bumps), not quadratically.
+  double huber = 3.0;
+  /// Starts: the parameter file's values and values this factor below and above them (the best fit kept).
+  double start_spread = 3.0;
+  int max_iterations = 50;
+  /// mu is determined only where the fitted model slides over this share of the patch at kMinSlidingSamples samples or
+  /// more; otherwise the data give a bound, mu >= max |F| / F_z.
+  double sliding_share = 0.5;
+  static constexpr int kMinSlidingSamples = 10;
+  /// A fitted parameter counts as determined where its standard deviation is below this fraction of its value.
+  double determined_sd = 0.2;
+  /// The models' accuracy target during the fit (a fraction of mu F_z): their error must sit below the IMU's noise.
+  double accuracy_target = 1e-3;
+};
+
+struct FittedValue
+{
+  FitParameter parameter = FitParameter::BristleStiffness;
+  double start = 0.0;       ///< the parameter file's value
+  double value = 0.0;       ///< fitted (or, not fitted, the file's)
+  double sd = 0.0;          ///< standard deviation [the parameter's unit]
+  bool fitted = false;      ///< asked for
+  bool determined = false;  ///< the data determine it (sd below FitOptions::determined_sd of it; mu: sliding seen)
+  double lower_bound = 0.0; ///< mu without sliding: the bound the data give (0: none)
+  std::string note;         ///< why not determined, in a few words
+};
+
+struct FitResult
+{
+  EstimatorSettings settings;  ///< the parameter file's, with the determined values
+  std::vector<FittedValue> values;
+  Eigen::MatrixXd correlation;  ///< of the fitted parameters, in the order of `values` where fitted
+  int samples = 0;              ///< all messages
+  int used = 0;                 ///< entering the fit
+  std::array<int, static_cast<int>(Rejection::Count)> rejected{};
+  double rms = 0.0;             ///< of the residuals (force and slips, per degree of freedom), in standard deviations
+  double reduced_chi2 = 0.0;    ///< sum of squared residuals / (used residuals - fitted parameters)
+  bool converged = false;
+  int iterations = 0;
+  int replays = 0;              ///< estimator replays the fit took
+  // what the used samples covered
+  double speed_min = 0.0, speed_max = 0.0, slip_max = 0.0, sliding_max = 0.0, force_max = 0.0;
+  Prediction fitted;            ///< the models at the fitted values
+  std::vector<std::uint8_t> used_mask;
+};
+
+/// Fits the chosen parameters to the measured forces by nonlinear least squares with errors in the inputs (Ceres
+/// Solver, Levenberg-Marquardt, Huber loss on the forces, several starts). Each message that enters (rolling, not
+/// parked, an IMU sample paired) has latent true slips (sigma_x, sigma_y, phi), tied to the measured ones by the
+/// covariance the odometry declares (EstimatorInput::twist_covariance, through the slips' Jacobian), and the measured
+/// force is compared with the steady brush model at those slips plus the rolling resistance, in units of the force's
+/// noise; the parameters are found with all the latent slips at once (the Schur complement eliminates them). The
+/// models' accuracy is raised to FitOptions::accuracy_target. Standard deviations from the fit's covariance (the
+/// latent slips marginalised), scaled by the reduced chi-square where that exceeds 1. Throws std::invalid_argument
+/// when no sample can enter the fit.
+FitResult fitContact(const std::vector<CalibrationSample>& samples, const EstimatorSettings& settings,
+                     const FitOptions& options = FitOptions());
+
+}  // namespace sphere_contact_estimator

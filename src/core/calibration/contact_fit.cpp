@@ -1,0 +1,483 @@
+#include "sphere_contact_estimator/core/calibration/contact_fit.h"
+
+// STL
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+// Eigen
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+
+// Ceres
+#include <ceres/ceres.h>
+
+// Package
+#include "sphere_contact_estimator/core/brush/brush_steady.h"
+#include "sphere_contact_estimator/core/estimator/estimate_covariance.h"
+#include "sphere_contact_estimator/core/estimator/paper_frame.h"
+
+namespace sphere_contact_estimator
+{
+namespace
+{
+constexpr int kParameters = static_cast<int>(FitParameter::Count);
+// central differences in each latent slip over a fraction of its noise: wide enough that the models' own error (the
+// accuracy target of mu F_z) stays a small part of the difference
+constexpr double kSlipStep = 0.25;  // of the slip's standard deviation
+
+double& field(EstimatorSettings& s, FitParameter p)
+{
+  return p == FitParameter::BristleStiffness ? s.bristle_stiffness : s.friction;
+}
+
+// What the fit keeps of one message: the measured slips (paper frame, rolling along +x) and their covariance from the
+// odometry's declared noise, the rolling speed, the frame's heading, the rolling resistance, the measured force.
+struct Message
+{
+  int index = 0;
+  Eigen::Vector3d slips = Eigen::Vector3d::Zero();  // sigma_x, sigma_y, phi (paper frame)
+  Eigen::Matrix3d prior = Eigen::Matrix3d::Identity();  // inverse Cholesky factor of their covariance (whitening)
+  Eigen::Vector3d sd = Eigen::Vector3d::Zero();
+  double chi_gamma = 1.0, speed = 0.0, heading = 0.0, rolling_resistance = 0.0;
+  Eigen::Vector2d force = Eigen::Vector2d::Zero();
+  double force_sd = 1.0;
+};
+
+// The parameters of one evaluation: the file's, with the fitted ones at exp(x) times the file's.
+class Parameters
+{
+public:
+  Parameters(const EstimatorSettings& base, std::vector<FitParameter> fitted) : base_(base), fitted_(std::move(fitted)) {}
+  int size() const { return static_cast<int>(fitted_.size()); }
+  EstimatorSettings at(const double* x) const
+  {
+    EstimatorSettings s = base_;
+    for (int j = 0; j < size(); ++j)
+      field(s, fitted_[j]) = field(s, fitted_[j]) * std::exp(x[j]);
+    return s;
+  }
+  FitParameter parameter(int j) const { return fitted_[j]; }
+
+private:
+  EstimatorSettings base_;
+  std::vector<FitParameter> fitted_;
+};
+
+// The brush force (paper frame, rolling along +x) of the steady model (Sects. 3, 6: the state a message's slips settle
+// to within a patch transit, a few messages) at slips z (paper frame).
+Eigen::Vector2d brushForce(const EstimatorSettings& s, const Message& m, const double* z)
+{
+  BrushSteady steady(s.brushParameters());
+  const ContactKinematics kin = ContactKinematics::fromSlips(Eigen::Vector2d(z[0], z[1]), z[2], m.chi_gamma, m.speed);
+  const BrushForces f = steady.update(kin, 0.0);
+  return { f.F_x, f.F_y };
+}
+
+// The horizontal force on the robot in the ground frame: the brush force turned from the paper's contact frame, and
+// the rolling resistance against the rolling direction.
+Eigen::Vector2d groundForce(const Message& m, const Eigen::Vector2d& brush, bool with_rolling_resistance = true)
+{
+  const Eigen::Vector2d contact =
+      paper_frame::toRos(brush) - Eigen::Vector2d(with_rolling_resistance ? m.rolling_resistance : 0.0, 0.0);
+  const double c = std::cos(m.heading), sn = std::sin(m.heading);
+  return { c * contact.x() - sn * contact.y(), sn * contact.x() + c * contact.y() };
+}
+
+// The measured force against the model's at the message's latent (true) slips, in units of the force's noise.
+//
+// The brush's field depends on k and mu only through the slips scaled by k / mu, and its stresses scale with mu
+// (the deflections are in units of mu q_z / k: BristleField), so F(k, mu; z) = mu G(z k / mu): the derivatives in
+// log k and log mu are D = z . dF/dz and F - D, from the slips' derivatives (central differences) at no further cost.
+class ForceResidual : public ceres::CostFunction
+{
+public:
+  ForceResidual(const Parameters& p, const Message& m) : p_(p), m_(m)
+  {
+    set_num_residuals(2);
+    mutable_parameter_block_sizes()->push_back(p.size());
+    mutable_parameter_block_sizes()->push_back(3);
+  }
+  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override
+  {
+    const EstimatorSettings s = p_.at(x[0]);
+    const Eigen::Vector2d B = brushForce(s, m_, x[1]);
+    const Eigen::Vector2d F = groundForce(m_, B);
+    residuals[0] = (m_.force.x() - F.x()) / m_.force_sd;
+    residuals[1] = (m_.force.y() - F.y()) / m_.force_sd;
+    if (!(std::isfinite(residuals[0]) && std::isfinite(residuals[1])))
+      return false;
+    if (!jacobians || (!jacobians[0] && !jacobians[1]))
+      return true;
+    Eigen::Matrix<double, 2, 3> dB;  // paper frame
+    double z[3] = { x[1][0], x[1][1], x[1][2] };
+    for (int j = 0; j < 3; ++j)
+    {
+      const double h = std::max(kSlipStep * m_.sd[j], 1e-6);
+      z[j] = x[1][j] + h;
+      const Eigen::Vector2d up = brushForce(s, m_, z);
+      z[j] = x[1][j] - h;
+      const Eigen::Vector2d down = brushForce(s, m_, z);
+      z[j] = x[1][j];
+      dB.col(j) = (up - down) / (2.0 * h);
+    }
+    const double inv = -1.0 / m_.force_sd;  // residual = (measured - model) / sd
+    if (jacobians[1])
+      for (int j = 0; j < 3; ++j)
+      {
+        const Eigen::Vector2d d = groundForce(m_, dB.col(j), false) * inv;
+        jacobians[1][j] = d.x();
+        jacobians[1][3 + j] = d.y();
+      }
+    if (jacobians[0])
+    {
+      const int n = p_.size();
+      const Eigen::Vector2d D = dB * Eigen::Vector3d(z[0], z[1], z[2]);
+      for (int j = 0; j < n; ++j)
+      {
+        const Eigen::Vector2d dBj = p_.parameter(j) == FitParameter::BristleStiffness ? D : Eigen::Vector2d(B - D);
+        const Eigen::Vector2d d = groundForce(m_, dBj, false) * inv;
+        jacobians[0][j] = d.x();
+        jacobians[0][n + j] = d.y();
+      }
+    }
+    return true;
+  }
+
+private:
+  const Parameters& p_;
+  const Message& m_;
+};
+
+// The latent slips against the measured ones, whitened by their covariance (errors in the inputs: without them a fit
+// of noisy small slips finds the slip stiffness far too low, the noise diluting the slope).
+class SlipPrior : public ceres::SizedCostFunction<3, 3>
+{
+public:
+  explicit SlipPrior(const Message& m) : m_(m) {}
+  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override
+  {
+    const Eigen::Vector3d r = m_.prior * (Eigen::Map<const Eigen::Vector3d>(x[0]) - m_.slips);
+    Eigen::Map<Eigen::Vector3d> out(residuals);
+    out = r;
+    if (jacobians && jacobians[0])
+    {
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> J(jacobians[0]);
+      J = m_.prior;
+    }
+    return true;
+  }
+
+private:
+  const Message& m_;
+};
+
+Rejection rejectionOf(const CalibrationSample& s, const Prediction& p, std::size_t i, bool& rejected)
+{
+  rejected = true;
+  if (!s.has_force || !(s.force_sd > 0.0))
+    return Rejection::NoImu;
+  if (!p.answered[i])
+    return Rejection::Unanswered;
+  if (p.flags[i] & (estimate_flags::kGapReset | estimate_flags::kTimeJumpReset))
+    return Rejection::Reset;
+  if (p.flags[i] & estimate_flags::kStandstill)
+    return Rejection::Standstill;
+  if (p.flags[i] & estimate_flags::kMotionWithinNoise)
+    return Rejection::WithinNoise;
+  rejected = false;
+  return Rejection::Count;
+}
+}  // namespace
+
+const char* toString(Rejection r)
+{
+  switch (r)
+  {
+    case Rejection::NoImu:
+      return "no IMU sample paired";
+    case Rejection::Unanswered:
+      return "input refused by the estimator";
+    case Rejection::Standstill:
+      return "standstill (slips undefined)";
+    case Rejection::Reset:
+      return "state reset (gap or time jump)";
+    case Rejection::WithinNoise:
+      return "motion within the odometry's noise (parked)";
+    case Rejection::Count:
+      break;
+  }
+  return "?";
+}
+
+const char* parameterName(FitParameter p)
+{
+  return p == FitParameter::BristleStiffness ? "bristle_stiffness" : "friction";
+}
+
+Prediction predictForces(const std::vector<CalibrationSample>& samples, const EstimatorSettings& settings)
+{
+  ContactEstimator estimator(settings);
+  Prediction p;
+  const std::size_t n = samples.size();
+  p.force.assign(n, Eigen::Vector2d::Zero());
+  p.sliding.assign(n, 0.0);
+  p.slip.assign(n, Eigen::Vector2d::Zero());
+  p.spin.assign(n, 0.0);
+  p.tilt_ratio.assign(n, 1.0);
+  p.speed.assign(n, 0.0);
+  p.heading.assign(n, 0.0);
+  p.rolling_resistance.assign(n, 0.0);
+  p.flags.assign(n, 0u);
+  p.answered.assign(n, 0u);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const ContactEstimateData* e = estimator.update(samples[i].input);
+    if (!e)
+      continue;
+    p.answered[i] = 1;
+    // the contact frame's forces on the sphere (x along the rolling direction), the rolling resistance against it
+    const double c = std::cos(e->heading), s = std::sin(e->heading);
+    const Eigen::Vector2d contact(e->brush.F_x - e->rolling_resistance_force, e->brush.F_y);
+    p.force[i] = Eigen::Vector2d(c * contact.x() - s * contact.y(), s * contact.x() + c * contact.y());
+    p.sliding[i] = e->brush.sliding_fraction;
+    p.slip[i] = e->slip;
+    p.spin[i] = e->spin;
+    p.tilt_ratio[i] = e->tilt_ratio;
+    p.speed[i] = e->rolling_speed;
+    p.heading[i] = e->heading;
+    p.rolling_resistance[i] = e->rolling_resistance_force;
+    p.flags[i] = e->flags;
+  }
+  return p;
+}
+
+FitResult fitContact(const std::vector<CalibrationSample>& samples, const EstimatorSettings& settings,
+                     const FitOptions& options)
+{
+  FitResult out;
+  out.samples = static_cast<int>(samples.size());
+  EstimatorSettings base = settings;
+  base.accuracy_target = std::min(settings.accuracy_target, options.accuracy_target);
+  base.auto_noise_fraction = 0.0;    // the models' accuracy is the fit's, not the noise's
+  base.propagate_covariance = true;  // (for the flag of a parked robot, kMotionWithinNoise)
+  std::vector<FitParameter> fitted;
+  for (int j = 0; j < kParameters; ++j)
+    if (options.fit[j])
+      fitted.push_back(static_cast<FitParameter>(j));
+
+  // which messages enter, and what the fit keeps of them: the flags and the frame do not depend on the parameters
+  const Prediction first = predictForces(samples, base);
+  out.used_mask.assign(samples.size(), 0u);
+  std::vector<Message> messages;
+  for (std::size_t i = 0; i < samples.size(); ++i)
+  {
+    bool rejected = false;
+    const Rejection r = rejectionOf(samples[i], first, i, rejected);
+    if (rejected)
+    {
+      ++out.rejected[static_cast<int>(r)];
+      continue;
+    }
+    const CalibrationSample& cs = samples[i];
+    Message m;
+    m.index = static_cast<int>(i);
+    const Eigen::Vector2d sigma = paper_frame::fromRos(first.slip[i]);
+    m.slips = Eigen::Vector3d(sigma.x(), sigma.y(), paper_frame::zFromRos(first.spin[i]));
+    m.chi_gamma = first.tilt_ratio[i];
+    m.speed = first.speed[i];
+    m.heading = first.heading[i];
+    m.rolling_resistance = first.rolling_resistance[i];
+    m.force = cs.force;
+    m.force_sd = cs.force_sd;
+    // the slips' covariance from the odometry's (the slips' Jacobian at the measured twist)
+    const Eigen::Matrix<double, 4, 5> J =
+        slipJacobian(cs.input.omega, cs.input.v_contact.head<2>(), base.rolling_radius, m.heading);
+    Eigen::Matrix3d C = J.topRows<3>() * usedTwistCovariance(cs.input.twist_covariance) * J.topRows<3>().transpose();
+    // exact inputs (no covariance declared) hold the slips: a floor far below any noise keeps the prior invertible
+    for (int k = 0; k < 3; ++k)
+      C(k, k) += 1e-16 + 1e-12 * C(k, k);
+    const Eigen::LLT<Eigen::Matrix3d> llt(C);
+    if (llt.info() != Eigen::Success)
+      continue;
+    const Eigen::Matrix3d L = llt.matrixL();
+    m.prior = L.inverse();
+    m.sd = C.diagonal().cwiseSqrt();
+    messages.push_back(m);
+    out.used_mask[i] = 1;
+    ++out.used;
+  }
+  if (out.used == 0)
+    throw std::invalid_argument("calibration: no sample can enter the fit (each was rejected; see the counts)");
+
+  const Parameters params(base, fitted);
+  const int n = params.size();
+  std::vector<double> best(n, 0.0);
+  std::vector<Eigen::Vector3d> best_latent;
+  double best_cost = std::numeric_limits<double>::infinity();
+  ceres::Solver::Summary best_summary;
+  // starts: the file's values, and below and above them (exp(x) times the file's)
+  for (double factor : { 1.0, 1.0 / options.start_spread, options.start_spread })
+  {
+    if (n == 0)
+      break;
+    std::vector<double> x(n, std::log(factor));
+    std::vector<Eigen::Vector3d> latent(messages.size());
+    ceres::Problem::Options po;
+    po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+    ceres::Problem problem(po);
+    for (std::size_t i = 0; i < messages.size(); ++i)
+    {
+      latent[i] = messages[i].slips;
+      problem.AddResidualBlock(new ForceResidual(params, messages[i]), new ceres::HuberLoss(options.huber), x.data(),
+                               latent[i].data());
+      problem.AddResidualBlock(new SlipPrior(messages[i]), nullptr, latent[i].data());
+    }
+    ceres::Solver::Options so;
+    so.linear_solver_type = ceres::DENSE_SCHUR;  // the latent slips eliminated: a system of the parameters alone
+    so.max_num_iterations = options.max_iterations;
+    so.num_threads = 1;
+    so.logging_type = ceres::SILENT;
+    so.function_tolerance = 1e-6;  // of the cost: far below what moves the parameters by a part of their spread
+    ceres::Solver::Summary summary;
+    ceres::Solve(so, &problem, &summary);
+    out.iterations += static_cast<int>(summary.iterations.size());
+    if (summary.IsSolutionUsable() && summary.final_cost < best_cost)
+    {
+      best_cost = summary.final_cost;
+      best = x;
+      best_latent = latent;
+      best_summary = summary;
+    }
+    // the file's values converged to a minimum no other start improves on: enough where the fit is well posed
+    if (factor == 1.0 && summary.termination_type == ceres::CONVERGENCE && n > 0)
+    {
+      bool inside = true;
+      for (int j = 0; j < n; ++j)
+        inside = inside && std::abs(x[j]) < std::log(options.start_spread);
+      if (inside)
+        break;
+    }
+  }
+
+  // the parameters' covariance with the latent slips marginalised: the Schur complement of J^T J at the solution,
+  // sum over messages of A^T A - A^T B (B^T B + P^T P)^-1 B^T A, A and B the force residuals' derivatives in the
+  // parameters and the slips, P the prior's whitening
+  EstimatorSettings result = params.at(best.data());
+  Eigen::MatrixXd info = Eigen::MatrixXd::Zero(n, n);
+  double chi2 = 0.0;
+  int sliding_samples = 0;
+  out.fitted = predictForces(samples, result);
+  bool first_used = true;
+  for (std::size_t i = 0; i < messages.size(); ++i)
+  {
+    const Message& m = messages[i];
+    ForceResidual f(params, m);
+    const double* xs[2] = { best.data(), best_latent.empty() ? m.slips.data() : best_latent[i].data() };
+    double r[2];
+    std::vector<double> A(2 * std::max(n, 1), 0.0);
+    double B[6];
+    double* jac[2] = { n > 0 ? A.data() : nullptr, B };
+    if (!f.Evaluate(xs, r, jac))
+      continue;
+    // the force's residuals and the latent slips' (the latter take up what the slips' noise explains)
+    const Eigen::Vector3d rp = m.prior * (Eigen::Map<const Eigen::Vector3d>(xs[1]) - m.slips);
+    chi2 += r[0] * r[0] + r[1] * r[1] + rp.squaredNorm();
+    if (n > 0)
+    {
+      const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> Am(A.data(), 2, n);
+      const Eigen::Map<const Eigen::Matrix<double, 2, 3, Eigen::RowMajor>> Bm(B);
+      const Eigen::Matrix3d BB = Bm.transpose() * Bm + m.prior.transpose() * m.prior;
+      const Eigen::MatrixXd BA = Bm.transpose() * Am;
+      info += Am.transpose() * Am - BA.transpose() * BB.ldlt().solve(BA);
+    }
+    const std::size_t k = static_cast<std::size_t>(m.index);
+    const double v = out.fitted.speed[k];
+    out.speed_min = first_used ? v : std::min(out.speed_min, v);
+    out.speed_max = first_used ? v : std::max(out.speed_max, v);
+    first_used = false;
+    out.slip_max = std::max(out.slip_max, out.fitted.slip[k].norm());
+    out.sliding_max = std::max(out.sliding_max, out.fitted.sliding[k]);
+    out.force_max = std::max(out.force_max, m.force.norm() - 2.0 * m.force_sd);
+    if (out.fitted.sliding[k] >= options.sliding_share)
+      ++sliding_samples;
+  }
+  out.replays = 2;
+  out.converged = n == 0 || best_summary.termination_type == ceres::CONVERGENCE;
+  // five residuals and three latent slips a message: two degrees of freedom each, less the parameters
+  const int dof = std::max(1, 2 * out.used - n);
+  out.reduced_chi2 = chi2 / dof;
+  out.rms = std::sqrt(out.reduced_chi2);
+  const double inflate = std::max(1.0, out.reduced_chi2);  // the IMU noisier than it said: wider intervals
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Constant(n, n, std::numeric_limits<double>::infinity());
+  if (n > 0)
+  {
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(info);
+    if (ldlt.info() == Eigen::Success && ldlt.isPositive() && info.diagonal().minCoeff() > 0.0)
+      cov = ldlt.solve(Eigen::MatrixXd::Identity(n, n)) * inflate;
+  }
+  out.correlation = Eigen::MatrixXd::Identity(n, n);
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      if (a != b && std::isfinite(cov(a, b)) && cov(a, a) > 0.0 && cov(b, b) > 0.0)
+        out.correlation(a, b) = cov(a, b) / std::sqrt(cov(a, a) * cov(b, b));
+
+  for (int j = 0; j < kParameters; ++j)
+  {
+    FittedValue v;
+    v.parameter = static_cast<FitParameter>(j);
+    v.start = field(base, v.parameter);
+    v.value = v.start;
+    const auto it = std::find(fitted.begin(), fitted.end(), v.parameter);
+    if (it != fitted.end())
+    {
+      const int k = static_cast<int>(it - fitted.begin());
+      v.fitted = true;
+      v.value = field(result, v.parameter);
+      v.sd = v.value * std::sqrt(std::max(0.0, cov(k, k)));  // sd of the log times the value
+      v.determined = std::isfinite(v.sd) && v.sd <= options.determined_sd * v.value;
+      if (!v.determined)
+        v.note = "the data do not determine it (sd above " + std::to_string(static_cast<int>(100 * options.determined_sd)) +
+                 " % of the value)";
+      if (v.parameter == FitParameter::Friction && sliding_samples < FitOptions::kMinSlidingSamples)
+      {
+        // without sliding, friction only bounds the forces seen: mu F_z >= |F_t| wherever the patch sticks
+        v.determined = false;
+        v.lower_bound = out.force_max / base.verticalLoad();
+        v.note = "the run never slides (at most " + std::to_string(static_cast<int>(100 * out.sliding_max + 0.5)) +
+                 " % of the patch): mu is only bounded below";
+      }
+    }
+    out.values.push_back(v);
+  }
+  // the settings: the file's, with the determined values
+  out.settings = settings;
+  for (const FittedValue& v : out.values)
+    if (v.fitted && v.determined)
+      field(out.settings, v.parameter) = v.value;
+
+  // friction asked for but not determined by a run that never slides: the other parameters again with mu held at
+  // the file's value or the bound, whichever is larger (a free mu wanders where nothing pins it)
+  const FittedValue& mu = out.values[static_cast<int>(FitParameter::Friction)];
+  if (mu.fitted && mu.lower_bound > 0.0 && n > 1)
+  {
+    FitOptions again = options;
+    again.fit[static_cast<int>(FitParameter::Friction)] = false;
+    EstimatorSettings held = settings;
+    held.friction = std::max(settings.friction, mu.lower_bound);
+    FitResult second = fitContact(samples, held, again);
+    FittedValue& m = second.values[static_cast<int>(FitParameter::Friction)];
+    m.fitted = true;
+    m.start = settings.friction;
+    m.value = held.friction;
+    m.lower_bound = mu.lower_bound;
+    m.note = mu.note + "; held at " + std::to_string(held.friction) + " for the others";
+    second.settings.friction = settings.friction;
+    second.iterations += out.iterations;
+    return second;
+  }
+  return out;
+}
+
+}  // namespace sphere_contact_estimator
