@@ -21,6 +21,7 @@ APT_PACKAGES=(
   libnav-msgs-dev libgeometry-msgs-dev libdiagnostic-msgs-dev libvisualization-msgs-dev libtf2-dev librosbag-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libboost-math-dev nlohmann-json3-dev libcli11-dev libyaml-cpp-dev libtf2-msgs-dev libroslib-dev libstd-srvs-dev
+  libceres-dev libsensor-msgs-dev python3-sensor-msgs
   python3-matplotlib python3-yaml python3-tf2-msgs
   rviz
 )

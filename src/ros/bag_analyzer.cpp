@@ -19,6 +19,7 @@
 #include <tf2_msgs/TFMessage.h>
 
 // Package
+#include "sphere_contact_estimator/ros/bag_reading.h"
 #include "sphere_contact_estimator/ros/bag_writer.h"
 #include "sphere_contact_estimator/ros/config_report.h"
 #include "sphere_contact_estimator/ros/estimate_csv.h"
@@ -78,77 +79,6 @@ std::vector<std::string> compareWithRecord(rosbag::Bag& in, const EstimatorSetti
   return warnings;
 }
 
-std::string odometryTopic(rosbag::View& all, const std::string& requested)
-{
-  std::set<std::string> odometry, topics;
-  for (const rosbag::ConnectionInfo* c : all.getConnections())
-  {
-    topics.insert(c->topic);
-    if (c->datatype == "nav_msgs/Odometry")
-      odometry.insert(c->topic);
-  }
-  const auto list = [](const std::set<std::string>& s) {
-    std::string text;
-    for (const auto& t : s)
-      text += (text.empty() ? "" : ", ") + t;
-    return text.empty() ? std::string("none") : text;
-  };
-  if (!requested.empty())
-  {
-    if (!odometry.count(requested))
-      throw std::runtime_error("no nav_msgs/Odometry topic " + requested + " in the bag; odometry topics: " +
-                               list(odometry));
-    return requested;
-  }
-  if (odometry.size() != 1)
-    throw std::runtime_error(odometry.empty() ? "no nav_msgs/Odometry topic in the bag; topics: " + list(topics) :
-                                                "several odometry topics (" + list(odometry) +
-                                                    "): choose one with --odom-topic");
-  return *odometry.begin();
-}
-
-// rosbag::Bag's constructor and destructor load and unload its encryption plugin through class_loader, whose state
-// is global and unguarded: two bags made at once on two threads crashed (bag_analyze with several bags). Reading an
-// open bag touches none of it. Recursive: a bag that fails to open is deleted while the lock is held.
-std::recursive_mutex g_bag_lifetime;
-
-struct BagDeleter
-{
-  void operator()(rosbag::Bag* bag) const
-  {
-    std::lock_guard<std::recursive_mutex> lock(g_bag_lifetime);
-    delete bag;
-  }
-};
-
-std::unique_ptr<rosbag::Bag, BagDeleter> openBag(const std::string& path)
-{
-  std::lock_guard<std::recursive_mutex> lock(g_bag_lifetime);
-  std::unique_ptr<rosbag::Bag, BagDeleter> bag(new rosbag::Bag);
-  try
-  {
-    bag->open(path, rosbag::bagmode::Read);
-  }
-  catch (const rosbag::BagException& e)
-  {
-    throw std::runtime_error("cannot read bag " + path + ": " + e.what());
-  }
-  return bag;
-}
-
-void addTransforms(tf2::BufferCore& buffer, const tf2_msgs::TFMessage& msg, bool is_static)
-{
-  for (const auto& t : msg.transforms)
-  {
-    try
-    {
-      buffer.setTransform(t, "bag", is_static);
-    }
-    catch (const std::exception&)  // a malformed transform in a bag is not ours to stop on
-    {
-    }
-  }
-}
 }  // namespace
 
 BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<void(double)>& progress)
@@ -161,7 +91,7 @@ BagAnalysisResult analyzeBag(const BagAnalysisOptions& o, const std::function<vo
   rosbag::View all(in);
   if (all.size() == 0)
     throw std::runtime_error("bag " + o.input + " is empty");
-  result.odom_topic = odometryTopic(all, o.odom_topic);
+  result.odom_topic = topicOfType(all, "nav_msgs/Odometry", o.odom_topic, "--odom-topic");
   const ros::Time bag_begin = all.getBeginTime(), bag_end = all.getEndTime();
   const ros::Time begin = std::min(bag_end, bag_begin + ros::Duration(std::max(0.0, o.start)));
   const ros::Time end = std::isfinite(o.end) ? std::min(bag_end, bag_begin + ros::Duration(std::max(0.0, o.end))) : bag_end;

@@ -83,6 +83,28 @@ std::string configurationText(const ContactEstimatorConfig& config)
   return text;
 }
 
+std::string parameterFileText(const ContactEstimatorConfig& config,
+                              const std::function<std::string(const std::string&)>& comment)
+{
+  std::string text;
+  for (const Description& d : ContactEstimatorConfig::__getParamDescriptions__())
+  {
+    std::string value = valueText(d, config);
+    // YAML 1.1 (rosparam, roslaunch) reads a float only with a dot: 1e-05 would be a string
+    dynamic_reconfigure::Config msg;
+    d->toMessage(msg, config);
+    const auto e = value.find('e');
+    if (!msg.doubles.empty() && e != std::string::npos && value.find('.') == std::string::npos)
+      value.insert(e, ".0");
+    std::string line = d->name + ": " + value;
+    const std::string extra = comment ? comment(d->name) : std::string();
+    if (!extra.empty())
+      line += std::string(std::max<std::size_t>(1, 30 - std::min<std::size_t>(line.size(), 30)), ' ') + "# " + extra;
+    text += line + "\n";
+  }
+  return text;
+}
+
 std::vector<ParameterChange> configurationChanges(const ContactEstimatorConfig& before, const ContactEstimatorConfig& after)
 {
   std::vector<ParameterChange> changes;

@@ -173,27 +173,19 @@ bool OdometryEstimator::groundPose(const nav_msgs::Odometry& msg, const std::str
   return false;
 }
 
-const EstimateOutputs* OdometryEstimator::process(const nav_msgs::Odometry& msg, const tf2::BufferCore& tf,
-                                                  SkipReason& reason, const std::string& publisher)
+bool OdometryEstimator::toInput(const nav_msgs::Odometry& msg, const tf2::BufferCore& tf, EstimatorInput& in,
+                                Eigen::Vector3d& centre, bool& have_centre)
 {
-  reason = SkipReason::None;
-  // counted on arrival, also for a message skipped below: the gap is before it
-  const std::uint32_t dropped = sequenceGap(publisher, msg.header.seq);
-  counters_.dropped += dropped;
-  tf_stale_ = false;
   const std::string& ground = ground_frame_.empty() ? msg.header.frame_id : ground_frame_;
   Eigen::Quaterniond q;
-  Eigen::Vector3d centre;
-  bool have_centre = false;
-  const std::uint64_t from_odometry = counters_.from_odometry;
+  have_centre = false;
   if (!groundPose(msg, ground, tf, q, centre, have_centre))
   {
     ++counters_.no_orientation;
-    reason = SkipReason::NoOrientation;
-    return nullptr;
+    return false;
   }
   // The twist is in child_frame_id (REP 105): into the gravity-aligned ground frame.
-  EstimatorInput in;
+  in = EstimatorInput{};
   in.stamp = msg.header.stamp.toSec();
   in.omega = q * vector(msg.twist.twist.angular);
   in.v_contact = q * vector(msg.twist.twist.linear);
@@ -216,6 +208,27 @@ const EstimateOutputs* OdometryEstimator::process(const nav_msgs::Odometry& msg,
   {
     ++counters_.bad_covariance;
     last_covariance_problem_ = problem;
+  }
+  return true;
+}
+
+const EstimateOutputs* OdometryEstimator::process(const nav_msgs::Odometry& msg, const tf2::BufferCore& tf,
+                                                  SkipReason& reason, const std::string& publisher)
+{
+  reason = SkipReason::None;
+  // counted on arrival, also for a message skipped below: the gap is before it
+  const std::uint32_t dropped = sequenceGap(publisher, msg.header.seq);
+  counters_.dropped += dropped;
+  tf_stale_ = false;
+  const std::string& ground = ground_frame_.empty() ? msg.header.frame_id : ground_frame_;
+  const std::uint64_t from_odometry = counters_.from_odometry;
+  EstimatorInput in;
+  Eigen::Vector3d centre;
+  bool have_centre = false;
+  if (!toInput(msg, tf, in, centre, have_centre))
+  {
+    reason = SkipReason::NoOrientation;
+    return nullptr;
   }
   const ContactEstimateData* e = estimator_.update(in);
   if (!e)

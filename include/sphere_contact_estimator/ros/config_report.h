@@ -1,6 +1,7 @@
 #pragma once
 
 // STL
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,11 @@ namespace sphere_contact_estimator
 /// "rolling_radius 0.1, robot_mass 5, ..., brush_model auto, ...": every parameter of cfg/ContactEstimator.cfg with
 /// its value, enums by name, for the log at start-up.
 std::string configurationText(const ContactEstimatorConfig& config);
+
+/// Every parameter as a line of the node's parameter file (`name: value`, enums by name, numbers as YAML 1.1 reads
+/// them: 1.0e-05, not 1e-05, which it takes for a string), in the .cfg's order; `comment(name)` may add one after it.
+std::string parameterFileText(const ContactEstimatorConfig& config,
+                              const std::function<std::string(const std::string&)>& comment = {});
 
 /// One parameter that differs between two configurations.
 struct ParameterChange

@@ -59,6 +59,11 @@ public:
   const EstimateOutputs* process(const nav_msgs::Odometry& msg, const tf2::BufferCore& tf, SkipReason& reason,
                                  const std::string& publisher = std::string());
 
+  /// The core estimator's input for one message, its frames as process() finds them (counted the same way), and the
+  /// sphere centre in the ground frame where known; false (counted) when it has no orientation. For tools that replay
+  /// the inputs themselves (calibrate).
+  bool toInput(const nav_msgs::Odometry& msg, const tf2::BufferCore& tf, EstimatorInput& in, Eigen::Vector3d& centre,
+               bool& have_centre);
   /// Forgets the history (time, heading, transient state).
   void reset();
 

@@ -26,6 +26,7 @@ constexpr int kParameters = static_cast<int>(FitParameter::Count);
 // central differences in each latent slip over a fraction of its noise: wide enough that the models' own error (the
 // accuracy target of mu F_z) stays a small part of the difference
 constexpr double kSlipStep = 0.25;  // of the slip's standard deviation
+constexpr std::size_t kSubsetMessages = 400;  // a long run's first solve
 
 double& field(EstimatorSettings& s, FitParameter p)
 {
@@ -205,6 +206,8 @@ const char* toString(Rejection r)
       return "state reset (gap or time jump)";
     case Rejection::WithinNoise:
       return "motion within the odometry's noise (parked)";
+    case Rejection::Transient:
+      return "speed changing within a patch transit";
     case Rejection::Count:
       break;
   }
@@ -268,16 +271,52 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
       fitted.push_back(static_cast<FitParameter>(j));
 
   // which messages enter, and what the fit keeps of them: the flags and the frame do not depend on the parameters
-  const Prediction first = predictForces(samples, base);
+  EstimatorSettings kinematic = base;
+  kinematic.brush_model = BrushModelKind::Off;  // the flags and the frame are the kinematics': no brush needed here
+  const Prediction first = predictForces(samples, kinematic);
+  // the rolling speed's rate by a least-squares line over the window around each message: the steady state's lag
+  const double a = base.brushParameters().a;
+  std::vector<double> lag(samples.size(), 0.0);
+  for (std::size_t i = 0, lo = 0, hi = 0; i < samples.size(); ++i)
+  {
+    const double t = samples[i].input.stamp;
+    while (lo < i && samples[lo].input.stamp < t - options.lag_window)
+      ++lo;
+    hi = std::max(hi, i);
+    while (hi + 1 < samples.size() && samples[hi + 1].input.stamp <= t + options.lag_window)
+      ++hi;
+    double st = 0.0, sv = 0.0, stt = 0.0, stv = 0.0;
+    int n_window = 0;
+    for (std::size_t j = lo; j <= hi; ++j)
+      if (first.answered[j])
+      {
+        const double dt = samples[j].input.stamp - t, v = first.speed[j];
+        st += dt, sv += v, stt += dt * dt, stv += dt * v;
+        ++n_window;
+      }
+    const double det = n_window * stt - st * st;
+    const double rate = n_window >= 3 && det > 0.0 ? (n_window * stv - st * sv) / det : 0.0;
+    const double v = first.speed[i];
+    lag[i] = v > 0.0 ? 2.0 * a * std::abs(rate) / (v * v) : std::numeric_limits<double>::infinity();
+  }
+
   out.used_mask.assign(samples.size(), 0u);
+  out.rejection.assign(samples.size(), Rejection::Count);
+  out.residuals.assign(samples.size(), Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN()));
   std::vector<Message> messages;
   for (std::size_t i = 0; i < samples.size(); ++i)
   {
     bool rejected = false;
-    const Rejection r = rejectionOf(samples[i], first, i, rejected);
+    Rejection r = rejectionOf(samples[i], first, i, rejected);
+    if (!rejected && lag[i] > options.max_lag)
+    {
+      rejected = true;
+      r = Rejection::Transient;
+    }
     if (rejected)
     {
       ++out.rejected[static_cast<int>(r)];
+      out.rejection[i] = r;
       continue;
     }
     const CalibrationSample& cs = samples[i];
@@ -318,18 +357,18 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
   double best_cost = std::numeric_limits<double>::infinity();
   ceres::Solver::Summary best_summary;
   // starts: the file's values, and below and above them (exp(x) times the file's)
-  for (double factor : { 1.0, 1.0 / options.start_spread, options.start_spread })
-  {
-    if (n == 0)
-      break;
-    std::vector<double> x(n, std::log(factor));
-    std::vector<Eigen::Vector3d> latent(messages.size());
+  // One solve from x over every stride-th message (the latent slips of the others stay at the measured ones).
+  const auto solve = [&](std::vector<double>& x, std::vector<Eigen::Vector3d>& latent, std::size_t stride,
+                         ceres::Solver::Summary& summary) {
+    latent.resize(messages.size());
     ceres::Problem::Options po;
     po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
     ceres::Problem problem(po);
     for (std::size_t i = 0; i < messages.size(); ++i)
     {
       latent[i] = messages[i].slips;
+      if (i % stride != 0)
+        continue;
       problem.AddResidualBlock(new ForceResidual(params, messages[i]), new ceres::HuberLoss(options.huber), x.data(),
                                latent[i].data());
       problem.AddResidualBlock(new SlipPrior(messages[i]), nullptr, latent[i].data());
@@ -338,11 +377,30 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
     so.linear_solver_type = ceres::DENSE_SCHUR;  // the latent slips eliminated: a system of the parameters alone
     so.max_num_iterations = options.max_iterations;
     so.num_threads = 1;
-    so.logging_type = ceres::SILENT;
-    so.function_tolerance = 1e-6;  // of the cost: far below what moves the parameters by a part of their spread
-    ceres::Solver::Summary summary;
+    so.logging_type = getenv("SCE_CERES_LOG") ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
+    so.minimizer_progress_to_stdout = getenv("SCE_CERES_LOG") != nullptr;
+    so.function_tolerance = getenv("SCE_FTOL") ? atof(getenv("SCE_FTOL")) : 1e-6;
+    so.parameter_tolerance = getenv("SCE_PTOL") ? atof(getenv("SCE_PTOL")) : 1e-8;
     ceres::Solve(so, &problem, &summary);
     out.iterations += static_cast<int>(summary.iterations.size());
+  };
+  // a long run first on a subset of its messages (what the parameters need comes from a few hundred), then whole
+  // from there: the whole run's solve then starts close and takes a few iterations
+  const std::size_t stride = std::max<std::size_t>(1, messages.size() / kSubsetMessages);
+  for (double factor : { 1.0, 1.0 / options.start_spread, options.start_spread })
+  {
+    if (n == 0)
+      break;
+    std::vector<double> x(n, std::log(factor));
+    std::vector<Eigen::Vector3d> latent;
+    ceres::Solver::Summary summary;
+    if (stride > 1)
+    {
+      solve(x, latent, stride, summary);
+      if (!summary.IsSolutionUsable())
+        x.assign(n, std::log(factor));
+    }
+    solve(x, latent, 1, summary);
     if (summary.IsSolutionUsable() && summary.final_cost < best_cost)
     {
       best_cost = summary.final_cost;
@@ -384,6 +442,7 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
     // the force's residuals and the latent slips' (the latter take up what the slips' noise explains)
     const Eigen::Vector3d rp = m.prior * (Eigen::Map<const Eigen::Vector3d>(xs[1]) - m.slips);
     chi2 += r[0] * r[0] + r[1] * r[1] + rp.squaredNorm();
+    out.residuals[static_cast<std::size_t>(m.index)] = Eigen::Vector2d(r[0], r[1]);
     if (n > 0)
     {
       const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> Am(A.data(), 2, n);
@@ -436,8 +495,10 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
       v.fitted = true;
       v.value = field(result, v.parameter);
       v.sd = v.value * std::sqrt(std::max(0.0, cov(k, k)));  // sd of the log times the value
-      v.determined = std::isfinite(v.sd) && v.sd <= options.determined_sd * v.value;
-      if (!v.determined)
+      v.determined = out.converged && std::isfinite(v.sd) && v.sd <= options.determined_sd * v.value;
+      if (!out.converged)
+        v.note = "the fit did not converge";
+      else if (!v.determined)
         v.note = "the data do not determine it (sd above " + std::to_string(static_cast<int>(100 * options.determined_sd)) +
                  " % of the value)";
       if (v.parameter == FitParameter::Friction && sliding_samples < FitOptions::kMinSlidingSamples)
@@ -473,7 +534,7 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
     m.value = held.friction;
     m.lower_bound = mu.lower_bound;
     m.note = mu.note + "; held at " + std::to_string(held.friction) + " for the others";
-    second.settings.friction = settings.friction;
+    second.settings.friction = held.friction;  // the file's, or the bound where the file's lies below what the run showed
     second.iterations += out.iterations;
     return second;
   }

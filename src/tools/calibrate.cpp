@@ -1,0 +1,279 @@
+// calibrate: the contact's parameters from recorded runs. Reads the odometry the node reads and an IMU at the sphere's
+// centre from one or more bags, fits the brush's bristle stiffness and friction (ContactFit: errors in the inputs,
+// Ceres Solver), writes a parameter file the node loads, a report (a CSV of every message and its figures) and a
+// summary on the terminal. Errors: a message on stderr and exit status 2.
+//
+//   calibrate --input run.bag [more.bag DIR/] --params robot.yaml --output fitted.yaml [--report DIR]
+
+// STL
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+// CLI11
+#include <CLI/CLI.hpp>
+
+// ROS
+#include <ros/package.h>
+#include <ros/time.h>
+
+// Package
+#include "sphere_contact_estimator/core/calibration/contact_fit.h"
+#include "sphere_contact_estimator/ros/bag_batch.h"
+#include "sphere_contact_estimator/ros/calibration_recording.h"
+#include "sphere_contact_estimator/ros/config_file.h"
+#include "sphere_contact_estimator/ros/config_report.h"
+#include "sphere_contact_estimator/ros/config_settings.h"
+
+namespace
+{
+namespace sce = sphere_contact_estimator;
+
+std::string format(const char* f, double v)
+{
+  char text[64];
+  std::snprintf(text, sizeof text, f, v);
+  return text;
+}
+
+// What the run covered and how the fit went, as the YAML's header and the terminal's summary share it.
+std::string coverage(const sce::FitResult& r, const sce::CalibrationRecording& rec)
+{
+  std::ostringstream s;
+  s << r.used << " of " << r.samples << " odometry messages in the fit; speeds " << format("%.2f", r.speed_min) << "-"
+    << format("%.2f", r.speed_max) << " m/s, slips up to " << format("%.3g", r.slip_max) << ", up to "
+    << format("%.0f", 100.0 * r.sliding_max) << " % of the patch sliding; IMU " << format("%.0f", rec.imu_rate)
+    << " Hz on " << rec.imu_topic << ", noise " << format("%.3g", rec.imu_noise) << " m/s^2 (" << rec.imu_noise_source
+    << ")";
+  return s.str();
+}
+
+std::string quality(const sce::FitResult& r)
+{
+  return "reduced chi-square " + format("%.2f", r.reduced_chi2) + " (1: residuals as the IMU's noise), " +
+         (r.converged ? "converged" : "NOT converged") + " after " + std::to_string(r.iterations) + " iterations";
+}
+
+// Where the fit's residuals say the run is not the model's: their spread beyond the noise, or a mean off zero.
+std::vector<std::string> mismatches(const sce::FitResult& r)
+{
+  std::vector<std::string> out;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  int n = 0;
+  for (std::size_t i = 0; i < r.residuals.size(); ++i)
+    if (r.used_mask[i] && r.residuals[i].allFinite())
+    {
+      mean += r.residuals[i];
+      ++n;
+    }
+  if (n > 0)
+    mean /= n;
+  if (r.reduced_chi2 > 2.0)
+    out.push_back("the residuals are " + format("%.1f", std::sqrt(r.reduced_chi2)) +
+                  " times the IMU's noise: the run is not the model's (another pressure distribution, a floor that "
+                  "gives, bumps) or the IMU is noisier than declared (--imu-noise); see residuals.png");
+  if (n > 0 && mean.norm() > 5.0 / std::sqrt(static_cast<double>(n)) && mean.norm() > 0.1)
+    out.push_back("the residuals' mean is (" + format("%.2f", mean.x()) + ", " + format("%.2f", mean.y()) +
+                  ") standard deviations, far from zero: a bias on the IMU, or its frame off the robot's");
+  return out;
+}
+
+std::string valueComment(const sce::FittedValue& v)
+{
+  if (!v.fitted)
+    return "";
+  if (v.determined)
+    return "fitted: sd " + format("%.3g", v.sd) + ", 95 % [" + format("%.4g", v.value - 1.96 * v.sd) + ", " +
+           format("%.4g", v.value + 1.96 * v.sd) + "], start " + format("%.4g", v.start);
+  if (v.lower_bound > 0.0)
+    return "NOT determined by the data (" + v.note + "): >= " + format("%.3g", v.lower_bound) + "; this value kept";
+  return "NOT determined by the data (" + v.note + ", sd " + format("%.3g", v.sd) + "); the parameter file's value kept";
+}
+
+void writeReportCsv(const std::string& path, const sce::CalibrationRecording& rec, const sce::FitResult& r,
+                    const std::string& header)
+{
+  std::ofstream out(path);
+  if (!out)
+    throw std::runtime_error("cannot write " + path);
+  std::istringstream lines(header);
+  for (std::string line; std::getline(lines, line);)
+    out << "# " << line << "\n";
+  out << "t,used,rejection,speed,slip_x,slip_y,spin,sliding,measured_x,measured_y,predicted_x,predicted_y,force_sd,"
+         "residual_x,residual_y\n";
+  const auto num = [](double v) { return std::isfinite(v) ? format("%.9g", v) : std::string("nan"); };
+  double offset = 0.0;
+  for (std::size_t i = 0; i < rec.samples.size(); ++i)
+  {
+    if (i > 0 && rec.bag[i] != rec.bag[i - 1])
+      offset = rec.samples[i].input.stamp - rec.time[i];  // runs one after the other on one time axis
+    const sce::CalibrationSample& s = rec.samples[i];
+    const sce::Prediction& p = r.fitted;
+    out << num(rec.time[i] + offset) << "," << int(r.used_mask[i]) << ","
+        << (r.used_mask[i] ? "" : sce::toString(r.rejection[i])) << "," << num(p.speed[i]) << "," << num(p.slip[i].x())
+        << "," << num(p.slip[i].y()) << "," << num(p.spin[i]) << "," << num(p.sliding[i]) << ","
+        << num(s.has_force ? s.force.x() : NAN) << "," << num(s.has_force ? s.force.y() : NAN) << ","
+        << num(p.force[i].x()) << "," << num(p.force[i].y()) << "," << num(s.force_sd) << "," << num(r.residuals[i].x())
+        << "," << num(r.residuals[i].y()) << "\n";
+  }
+}
+
+// The report's figures: scripts/plot_calibration.py beside this executable (installed) or in the package's source.
+void drawReport(const std::string& csv, const std::string& dir)
+{
+  namespace fs = std::filesystem;
+  std::vector<fs::path> candidates;
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec)
+    candidates.push_back(self.parent_path() / "plot_calibration.py");
+  const std::string share = ros::package::getPath("sphere_contact_estimator");
+  if (!share.empty())
+    candidates.push_back(fs::path(share) / "scripts" / "plot_calibration.py");
+  for (const fs::path& script : candidates)
+    if (fs::exists(script))
+    {
+      const std::string command = "/usr/bin/python3 '" + script.string() + "' '" + csv + "' '" + dir + "' > /dev/null";
+      if (std::system(command.c_str()) != 0)
+        std::cerr << "calibrate: warning: the figures could not be drawn (" << command << ")\n";
+      return;
+    }
+  std::cerr << "calibrate: warning: scripts/plot_calibration.py not found: the report has its CSV only\n";
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  CLI::App app{ "calibrate: the brush's bristle stiffness and friction from recorded runs (odometry and an IMU at the "
+                "sphere's centre); writes a parameter file the node loads, a report and a summary" };
+  std::vector<std::string> inputs, sets, fit = { "bristle_stiffness", "friction" };
+  std::string params, output, report;
+  sce::CalibrationReadOptions read;
+  app.add_option("--input,-i", inputs, "bags, and folders of bags (*.bag), read in order")->required();
+  app.add_option("--params,-p", params,
+                 "the robot's parameter file in the node's format (default: the package's config/contact_estimator.yaml)");
+  app.add_option("--set", sets, "NAME=VALUE: one parameter, after the file (repeatable)");
+  app.add_option("--output,-o", output, "the fitted parameter file (the node's format, with a header)")->required();
+  app.add_option("--report,-r", report, "folder for the report: calibration.csv and its figures");
+  app.add_option("--odom-topic", read.odom_topic, "nav_msgs/Odometry topic (default: the bag's only one)");
+  app.add_option("--imu-topic", read.imu_topic, "sensor_msgs/Imu topic, at the sphere's centre (default: the bag's only one)");
+  app.add_option("--imu-noise", read.imu_noise,
+                 "the IMU's noise, sd of its acceleration on each axis [m/s^2] (default: the messages' covariance, else "
+                 "estimated from the run)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--fit", fit, "the parameters to fit")->delimiter(',')->check(CLI::IsMember({ "bristle_stiffness", "friction" }));
+  CLI11_PARSE(app, argc, argv);
+
+  try
+  {
+    ros::Time::init();
+    const auto started = std::chrono::steady_clock::now();
+    if (params.empty())
+    {
+      const std::string share = ros::package::getPath("sphere_contact_estimator");
+      if (share.empty())
+        throw std::runtime_error("the package is not on ROS_PACKAGE_PATH: give --params");
+      params = share + "/config/contact_estimator.yaml";
+    }
+    sce::applyParameterFile(read.config, params);
+    for (const std::string& s : sets)
+    {
+      const auto eq = s.find('=');
+      if (eq == std::string::npos)
+        throw std::invalid_argument("--set " + s + ": expected NAME=VALUE");
+      sce::setParameter(read.config, s.substr(0, eq), s.substr(eq + 1));
+    }
+    const std::vector<std::string> bags = sce::expandBagInputs(inputs);
+    if (bags.empty())
+      throw std::runtime_error("no bag among the inputs");
+    const sce::CalibrationRecording rec = sce::readCalibrationBags(bags, read);
+    const sce::EstimatorSettings settings = sce::settingsFromConfig(read.config);
+    sce::FitOptions options;
+    for (int j = 0; j < static_cast<int>(sce::FitParameter::Count); ++j)
+      options.fit[j] = std::find(fit.begin(), fit.end(), sce::parameterName(static_cast<sce::FitParameter>(j))) != fit.end();
+    const sce::FitResult r = sce::fitContact(rec.samples, settings, options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+
+    // the parameter file: the robot's, with the determined values, and a header that says where they came from
+    sce::ContactEstimatorConfig fitted = read.config;
+    for (const sce::FittedValue& v : r.values)
+      if (v.fitted)
+      {
+        const double value = v.parameter == sce::FitParameter::BristleStiffness ? r.settings.bristle_stiffness : r.settings.friction;
+        sce::setParameter(fitted, sce::parameterName(v.parameter), format("%.6g", value));
+      }
+    std::string header = "Fitted by calibrate from " + std::to_string(bags.size()) + " bag(s):\n";
+    for (const std::string& b : bags)
+      header += "  " + b + "\n";
+    header += "starting from " + params + "\n" + coverage(r, rec) + "\n" + quality(r) + "\n";
+    for (const std::string& w : mismatches(r))
+      header += "WARNING: " + w + "\n";
+    {
+      std::ofstream out(output);
+      if (!out)
+        throw std::runtime_error("cannot write " + output);
+      std::istringstream lines(header);
+      for (std::string line; std::getline(lines, line);)
+        out << "# " << line << "\n";
+      out << "# Load it as the node's parameter file: roslaunch sphere_contact_estimator contact_estimator.launch "
+             "config:=" << std::filesystem::absolute(output).string() << "\n\n";
+      out << sce::parameterFileText(fitted, [&](const std::string& name) {
+        for (const sce::FittedValue& v : r.values)
+          if (name == sce::parameterName(v.parameter))
+            return valueComment(v);
+        return std::string();
+      });
+    }
+    if (!report.empty())
+    {
+      std::filesystem::create_directories(report);
+      const std::string csv = report + "/calibration.csv";
+      writeReportCsv(csv, rec, r, header);
+      drawReport(csv, report);
+    }
+
+    // the summary
+    std::printf("calibrate: %zu bag(s), %s\n", bags.size(), coverage(r, rec).c_str());
+    std::string rejected;
+    for (int i = 0; i < static_cast<int>(sce::Rejection::Count); ++i)
+      if (r.rejected[i] > 0)
+        rejected += (rejected.empty() ? "" : ", ") + std::to_string(r.rejected[i]) + " " +
+                    sce::toString(static_cast<sce::Rejection>(i));
+    std::printf("  not in the fit: %s\n", rejected.empty() ? "none" : rejected.c_str());
+    if (rec.imu_without_orientation > 0)
+      std::printf("  IMU messages without an orientation (none in the message, none in tf): %llu, unused\n",
+                  static_cast<unsigned long long>(rec.imu_without_orientation));
+    std::printf("  %-18s %12s %12s %12s %27s  %s\n", "parameter", "start", "fitted", "sd", "95 % interval", "");
+    for (const sce::FittedValue& v : r.values)
+    {
+      if (!v.fitted)
+        continue;
+      const std::string interval =
+          "[" + format("%.4g", v.value - 1.96 * v.sd) + ", " + format("%.4g", v.value + 1.96 * v.sd) + "]";
+      if (v.determined)
+        std::printf("  %-18s %12.4g %12.5g %12.3g %27s  determined\n", sce::parameterName(v.parameter), v.start,
+                    v.value, v.sd, interval.c_str());
+      else
+        std::printf("  %-18s %12.4g %12s %12s %27s  %s\n", sce::parameterName(v.parameter), v.start,
+                    v.lower_bound > 0.0 ? (">= " + format("%.3g", v.lower_bound)).c_str() : "-", "-", "-",
+                    v.note.c_str());
+    }
+    if (r.correlation.rows() == 2)
+      std::printf("  correlation of the two: %.2f\n", r.correlation(0, 1));
+    std::printf("  fit: %s, %.1f s\n", quality(r).c_str(), seconds);
+    for (const std::string& w : mismatches(r))
+      std::printf("  WARNING: %s\n", w.c_str());
+    std::printf("  parameter file: %s%s\n", output.c_str(), report.empty() ? "" : ("; report: " + report).c_str());
+    return 0;
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "calibrate: error: " << e.what() << "\n";
+    return 2;
+  }
+}

@@ -1,0 +1,121 @@
+// calibrate and calibration_bag as a user runs them (issue 23): a run of a robot with known parameters written as a bag,
+// the fit from it, the parameter file the node loads (the round trip), the report, and the errors for bags it cannot
+// use (no IMU topic, no odometry, an IMU at another rate).
+
+// STL
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+// GTest
+#include <gtest/gtest.h>
+
+// ROS
+#include <nav_msgs/Odometry.h>
+#include <ros/time.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/Imu.h>
+
+// Package
+#include "sphere_contact_estimator/ros/config_file.h"
+#include "../command_outcome.h"
+
+namespace sce = sphere_contact_estimator;
+using sce::test::Outcome;
+using sce::test::runCommand;
+using sce::test::slurp;
+
+namespace
+{
+const std::string kDir = "/tmp/sce_test_calibrate";
+const std::string kParams = std::string(PACKAGE_SOURCE_DIR) + "/config/contact_estimator.yaml";
+
+// a copy of a bag with only some topics, or every IMU message but every other one
+void filterBag(const std::string& in, const std::string& out, bool keep_odometry, bool keep_imu, int imu_every = 1)
+{
+  rosbag::Bag src(in), dst(out, rosbag::bagmode::Write);
+  int n = 0;
+  for (const rosbag::MessageInstance& m : rosbag::View(src))
+  {
+    if (m.getTopic() == "/odom" && keep_odometry)
+      dst.write(m.getTopic(), m.getTime(), m);
+    if (m.getTopic() == "/imu" && keep_imu && n++ % imu_every == 0)
+      dst.write(m.getTopic(), m.getTime(), m);
+  }
+}
+
+class Calibrate : public ::testing::Test
+{
+protected:
+  static void SetUpTestSuite()
+  {
+    ros::Time::init();
+    std::system(("mkdir -p " + kDir).c_str());
+    // a 3-kg robot with k = 1.5e8, mu = 0.6, half the bundled manoeuvre
+    const Outcome r = runCommand(std::string(CALIBRATION_BAG_PATH) + " -p " + kParams +
+                                 " --set robot_mass=3 --set bristle_stiffness=1.5e8 --set friction=0.6 --seed 5"
+                                 " --duration-scale 0.5 -o " + kDir + "/run.bag");
+    ASSERT_EQ(r.status, 0) << r.out << r.err;
+  }
+};
+}  // namespace
+
+TEST_F(Calibrate, FitsARunAndTheNodeLoadsTheFile)
+{
+  const Outcome r = runCommand(std::string(CALIBRATE_PATH) + " -i " + kDir + "/run.bag -p " + kParams +
+                               " --set robot_mass=3 -o " + kDir + "/fitted.yaml --report " + kDir + "/report");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  for (const char* line : { "odometry messages in the fit", "not in the fit:", "bristle_stiffness", "friction",
+                            "reduced chi-square", "determined" })
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << " missing in\n" << r.out;
+  // the file loads as the node's parameters, with the fitted values near the truth and the robot's own kept
+  sce::ContactEstimatorConfig c = sce::ContactEstimatorConfig::__getDefault__();
+  ASSERT_NO_THROW(sce::applyParameterFile(c, kDir + "/fitted.yaml"));
+  EXPECT_NEAR(c.bristle_stiffness / 1.5e8, 1.0, 0.05) << slurp(kDir + "/fitted.yaml");
+  EXPECT_NEAR(c.friction / 0.6, 1.0, 0.02);
+  EXPECT_EQ(c.robot_mass, 3.0);
+  const std::string yaml = slurp(kDir + "/fitted.yaml");
+  EXPECT_EQ(yaml.rfind("# Fitted by calibrate from 1 bag(s):\n", 0), 0u) << yaml.substr(0, 200);
+  for (const char* part : { "speeds ", "slips up to", "reduced chi-square", "bristle_stiffness: ", "# fitted: sd " })
+    EXPECT_NE(yaml.find(part), std::string::npos) << part;
+  // the report: every message in the CSV, and its figures
+  const std::string csv = slurp(kDir + "/report/calibration.csv");
+  EXPECT_NE(csv.find("\nt,used,rejection,speed,"), std::string::npos);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n') - std::count(csv.begin(), csv.end(), '#'), 977);  // 976 rows
+  for (const char* png : { "force_time.png", "force_slip.png", "residuals.png", "coverage.png" })
+    EXPECT_FALSE(slurp(kDir + "/report/" + png).empty()) << png;
+}
+
+TEST_F(Calibrate, SaysWhatIsWrongWithABag)
+{
+  const std::string tool = std::string(CALIBRATE_PATH) + " -p " + kParams + " -o " + kDir + "/x.yaml -i ";
+  filterBag(kDir + "/run.bag", kDir + "/no_imu.bag", true, false);
+  Outcome r = runCommand(tool + kDir + "/no_imu.bag");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("no sensor_msgs/Imu topic in the bag"), std::string::npos) << r.err;
+  r = runCommand(tool + kDir + "/run.bag --imu-topic /imu_nope");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("no sensor_msgs/Imu topic /imu_nope"), std::string::npos) << r.err;
+  filterBag(kDir + "/run.bag", kDir + "/no_odom.bag", false, true);
+  r = runCommand(tool + kDir + "/no_odom.bag");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("no nav_msgs/Odometry topic in the bag"), std::string::npos) << r.err;
+  r = runCommand(tool + kDir + "/missing.bag");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("no such bag or directory: " + kDir + "/missing.bag"), std::string::npos) << r.err;
+}
+
+TEST_F(Calibrate, AnImuAtAnotherRateIsInterpolatedToTheOdometry)
+{
+  // the IMU at a third of the odometry's rate (33 Hz): each odometry stamp between two IMU samples within the gap
+  filterBag(kDir + "/run.bag", kDir + "/slow_imu.bag", true, true, 3);
+  const Outcome r = runCommand(std::string(CALIBRATE_PATH) + " -i " + kDir + "/slow_imu.bag -p " + kParams +
+                               " --set robot_mass=3 --set friction=0.6 --fit bristle_stiffness -o " + kDir + "/slow.yaml");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("IMU 33 Hz"), std::string::npos) << r.out;
+  sce::ContactEstimatorConfig c = sce::ContactEstimatorConfig::__getDefault__();
+  sce::applyParameterFile(c, kDir + "/slow.yaml");
+  EXPECT_NEAR(c.bristle_stiffness / 1.5e8, 1.0, 0.1);
+  EXPECT_EQ(c.friction, 0.6) << "not fitted: as given";
+}
