@@ -13,7 +13,7 @@ default_brush_model() {
   case "$m" in off) echo 0 ;; linear) echo 1 ;; steady) echo 2 ;; transient) echo 3 ;; auto) echo 4 ;; *) echo "$m" ;; esac
 }
 install_deps
-build bench_models model_accuracy node_benchmark contact_estimator_node bag_analyze replay_benchmark
+build bench_models model_accuracy node_benchmark contact_estimator_node bag_analyze replay_benchmark calibration_accuracy
 mkdir -p "$OUT"
 BIN="$WS/devel/lib/$PKG"
 log "timing (Google Benchmark, 3 repetitions, medians)"
@@ -50,7 +50,10 @@ log "bag_analyze's replay path on a generated bag of 1.1e5 odometry messages, on
 taskset -c 0 "$BIN/replay_benchmark" > "$OUT/replay.json"
 taskset -c 0 "$BIN/replay_benchmark" --tf --models off linear steady > "$OUT/replay_tf.json"
 taskset -c 0 "$BIN/replay_benchmark" --writers > "$OUT/writers.json"
+log "the calibration over 100 seeds, a 60-s run's time, runs that are not the model's (about 15 minutes)"
+"$BIN/calibration_accuracy" --seeds 100 > "$OUT/calibration.json"
 /usr/bin/python3 "$REPO/scripts/benchmark_report.py" --bench "$OUT/bench.json" --accuracy "$OUT/accuracy.json" \
   --node "$OUT/node.json" --bag "$OUT/bag.json" --default-brush-model "$(default_brush_model)" \
   --replay "$OUT/replay.json" "$OUT/replay_tf.json" "$OUT/writers.json" --streams "$OUT/streams.json" --replay-profile "$REPO/bench/replay_profile.md" \
+  --calibration "$OUT/calibration.json" \
   --docs "$REPO/docs"

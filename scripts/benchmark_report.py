@@ -778,6 +778,72 @@ def bag_section(bag):
 
 
 
+def calibration_section(cal):
+    """calibration_accuracy's output: the fit over seeds, the 60-s runs' time, the mismatched runs."""
+    runs, truth = cal["runs"], cal["truth"]
+    k_err = [abs(r["k"] / truth["k"] - 1.0) for r in runs]
+    mu_err = [abs(r["mu"] / truth["mu"] - 1.0) for r in runs]
+    k_z = [(r["k"] - truth["k"]) / r["k_sd"] for r in runs if r["k_sd"] > 0]
+    mu_z = [(r["mu"] - truth["mu"]) / r["mu_sd"] for r in runs if r["mu_sd"] > 0]
+
+    def inside(zs):
+        return sum(abs(z) <= 1.96 for z in zs)
+
+    def z_text(zs):
+        m = mean(zs)
+        sd = math.sqrt(sum((z - m) ** 2 for z in zs) / max(len(zs) - 1, 1))
+        worst = max(zs, key=abs)
+        return "mean %+.2f, sd %.2f, worst %+.2f" % (m, sd, worst)
+
+    n = len(runs)
+    secs = [r["seconds"] for r in runs]
+    long_secs = [r["seconds"] for r in cal.get("long", [])]
+    lines = ["## Calibration", "",
+             "`calibration_accuracy`: %d synthetic runs of the bundled calibration manoeuvre (src/scenario/calibration_run.h,"
+             " %.1f s at 100 Hz) of a %.0f-kg robot with k = %.3g N/m³ and μ = %.2f, the forces from the node's auto model,"
+             " the demo's odometry noise and %.2f m/s² on the IMU, one seed each; each fitted as `calibrate` does from"
+             " k = 2e8 and μ = 0.8. z is the fitted value's distance from the truth in its own standard deviations."
+             % (n, runs[0]["duration"], truth["mass"], truth["k"], truth["mu"], cal["imu_noise"]), "",
+             "| parameter | median error | largest error | truth inside the 95 % interval | z over the seeds |",
+             "|---|---|---|---|---|",
+             "| k | %.2f %% | %.2f %% | %d of %d (%.0f %%) | %s |" % (
+                 100 * quantile(k_err, 0.5), 100 * max(k_err), inside(k_z), len(k_z), 100.0 * inside(k_z) / len(k_z),
+                 z_text(k_z)),
+             "| μ | %.3f %% | %.3f %% | %d of %d (%.0f %%) | %s |" % (
+                 100 * quantile(mu_err, 0.5), 100 * max(mu_err), inside(mu_z), len(mu_z),
+                 100.0 * inside(mu_z) / len(mu_z), z_text(mu_z)), "",
+             "Fit time per run: median %.1f s, largest %.1f s; a %.1f-s run at 100 Hz (%d messages): %s s (issue 23"
+             " asks under 30 s for 60 s). Runs flagged as not the model's (residuals' streaks) among these: %d of %d." % (
+                 quantile(secs, 0.5), max(secs), cal["long"][0]["duration"] if long_secs else 0.0,
+                 cal["long"][0]["messages"] if long_secs else 0, ", ".join("%.1f" % x for x in long_secs),
+                 sum(r["mismatch"] for r in runs), n), ""]
+    for key, what in (("imu_bias", "an IMU biased by 0.2 m/s² on the body's x"),
+                      ("uniform_pressure", "a uniform pressure where the fit assumes the parabolic one")):
+        rs = cal.get(key, [])
+        if rs:
+            lines.append("Runs with %s: flagged in %d of %d (residuals' lag-1 autocorrelation %s), k off by %s %%, μ by"
+                         " %s %%." % (what, sum(r["mismatch"] for r in rs), len(rs),
+                                      "-".join("%.2f" % x for x in (min(r["autocorrelation"] for r in rs),
+                                                                    max(r["autocorrelation"] for r in rs))),
+                                      "-".join("%.1f" % (100 * x) for x in (min(abs(r["k"] / truth["k"] - 1) for r in rs),
+                                                                            max(abs(r["k"] / truth["k"] - 1) for r in rs))),
+                                      "-".join("%.1f" % (100 * x) for x in (min(abs(r["mu"] / truth["mu"] - 1) for r in rs),
+                                                                            max(abs(r["mu"] / truth["mu"] - 1) for r in rs)))))
+            lines.append("")
+    k_cov, mu_cov = 100.0 * inside(k_z) / len(k_z), 100.0 * inside(mu_z) / len(mu_z)
+    lines += ["| calibration target (issue 23) | measured | |", "|---|---|---|",
+              "| k within 5 %% at the median seed | %.2f %% | %s |" % (100 * quantile(k_err, 0.5),
+                                                                     verdict(quantile(k_err, 0.5), 0.05)),
+              "| μ within 2 %% at the median seed | %.3f %% | %s |" % (100 * quantile(mu_err, 0.5),
+                                                                      verdict(quantile(mu_err, 0.5), 0.02)),
+              "| 95 %% intervals hold the truth at 90–99 %% of seeds | k %.0f %%, μ %.0f %% | %s |" % (
+                  k_cov, mu_cov, "met" if all(90 <= c <= 99 for c in (k_cov, mu_cov)) else "missed"),
+              "| a 60-s run at 100 Hz under 30 s | %s | %s |" % (
+                  ", ".join("%.1f s" % x for x in long_secs) or "not run",
+                  verdict(max(long_secs), 30.0) if long_secs else "not run"), ""]
+    return lines
+
+
 def targets_section(acc, times, g, node, default_model):
     lines = ["## Targets", "", "| target | measured | |", "|---|---|---|"]
     lin = times.get("BM_BrushLinear")
@@ -949,6 +1015,7 @@ def main():
                     help="the node's default brush_model (1 linear, 2 steady, 3 transient, 4 auto), for the node"
                     " target")
     ap.add_argument("--streams", help="stream_benchmark.py output: every message of the recorded manoeuvres")
+    ap.add_argument("--calibration", help="calibration_accuracy output: the fit over seeds")
     ap.add_argument("--docs", required=True)
     a = ap.parse_args()
     with open(a.bench) as f:
@@ -1007,6 +1074,9 @@ def main():
     if a.streams:
         with open(a.streams) as f:
             lines += streams_section(json.load(f), node)
+    if a.calibration:
+        with open(a.calibration) as f:
+            lines += calibration_section(json.load(f))
     lines += targets_section(acc, times, g, node, a.default_brush_model)
     lines += ["The plot: time per evaluation on the Fig. 4 set under each sliding law (the steady solver: its median"
               " over both tilt values at each target; the marching scheme: its average over the set; the transient"

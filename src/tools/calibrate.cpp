@@ -77,6 +77,11 @@ std::vector<std::string> mismatches(const sce::FitResult& r)
     out.push_back("the residuals are " + format("%.1f", std::sqrt(r.reduced_chi2)) +
                   " times the IMU's noise: the run is not the model's (another pressure distribution, a floor that "
                   "gives, bumps) or the IMU is noisier than declared (--imu-noise); see residuals.png");
+  if (r.mismatch())
+    out.push_back("the residuals run in streaks (lag-1 autocorrelation " + format("%.2f", r.residual_autocorrelation.maxCoeff()) +
+                  "; runs of the model stay below " + format("%.2f", sce::FitResult::mismatchThreshold(r.used)) +
+                  "): the run is not the model's (another pressure distribution, an IMU bias, a floor that gives) or "
+                  "the IMU's noise is filtered; see residuals.png, and do not trust these values");
   if (n > 0 && mean.norm() > 5.0 / std::sqrt(static_cast<double>(n)) && mean.norm() > 0.1)
     out.push_back("the residuals' mean is (" + format("%.2f", mean.x()) + ", " + format("%.2f", mean.y()) +
                   ") standard deviations, far from zero: a bias on the IMU, or its frame off the robot's");

@@ -78,9 +78,10 @@ TEST(ContactFit, RecoversTheParametersOfASyntheticRunWithinItsIntervals)
     EXPECT_LT(std::abs(k.value / 1.5e8 - 1.0), 0.05) << seed;
     EXPECT_LT(std::abs(mu.value - 0.6), 4.0 * mu.sd) << mu.value << " +- " << mu.sd << ", seed " << seed;
     EXPECT_LT(std::abs(mu.value / 0.6 - 1.0), 0.02) << seed;
-    // the residuals are the noise the run was made with
+    // the residuals are the noise the run was made with, no streaks
     EXPECT_GT(r.reduced_chi2, 0.8);
     EXPECT_LT(r.reduced_chi2, 1.25);
+    EXPECT_FALSE(r.mismatch()) << r.residual_autocorrelation.transpose();
     // the settings carry the fitted values; what was not fitted is the file's
     EXPECT_EQ(r.settings.bristle_stiffness, k.value);
     EXPECT_EQ(r.settings.friction, mu.value);
@@ -141,4 +142,18 @@ TEST(ContactFit, CountsWhyMessagesStayOut)
   for (auto& s : samples)
     s.has_force = false;
   EXPECT_THROW(sce::fitContact(samples, file(), o), std::invalid_argument);
+}
+
+TEST(ContactFit, ARunThatIsNotTheModelsIsFlagged)
+{
+  // an IMU biased by 0.2 m/s^2 on the body's x axis: the fit goes on, the residuals run in streaks
+  sce::CalibrationNoise noise;
+  noise.seed = 41;
+  noise.imu_bias = Eigen::Vector2d(0.2, 0.0);
+  const sce::EstimatorSettings t = truth();
+  std::vector<sce::CalibrationSample> samples;
+  for (const sce::CalibrationMessage& m : sce::calibrationRun(sce::Scenario(halved(), t.rolling_radius), t, 100.0, noise))
+    samples.push_back(m.sample);
+  const sce::FitResult r = sce::fitContact(samples, file());
+  EXPECT_TRUE(r.mismatch()) << r.residual_autocorrelation.transpose() << ", used " << r.used;
 }

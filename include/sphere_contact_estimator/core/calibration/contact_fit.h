@@ -102,11 +102,24 @@ struct FitResult
   std::array<int, static_cast<int>(Rejection::Count)> rejected{};
   double rms = 0.0;             ///< of the residuals (force and slips, per degree of freedom), in standard deviations
   double reduced_chi2 = 0.0;    ///< sum of squared residuals / (used residuals - fitted parameters)
+  /// The force residuals' lag-1 autocorrelation on each ground axis, over the used messages in order. A run that is
+  /// not the model's (another pressure distribution, an IMU bias, a floor that gives) leaves streaks of one sign: 0.58-
+  /// 0.84 in synthetic runs with a uniform pressure or a 0.2 m/s^2 bias, against at most 0.19 (median 0.03) in 100 runs
+  /// of the model. mismatch() tells.
+  Eigen::Vector2d residual_autocorrelation = Eigen::Vector2d::Zero();
+  /// The residuals run in streaks: the autocorrelation above mismatchThreshold(used) on an axis.
+  bool mismatch() const;
+  static constexpr double kMismatchAutocorrelation = 0.3;
+  /// max(4 / sqrt(used), kMismatchAutocorrelation).
+  static double mismatchThreshold(int used);
   bool converged = false;
   int iterations = 0;
   int replays = 0;              ///< estimator replays the fit took
   // what the used samples covered
-  double speed_min = 0.0, speed_max = 0.0, slip_max = 0.0, sliding_max = 0.0, force_max = 0.0;
+  double speed_min = 0.0, speed_max = 0.0, slip_max = 0.0, sliding_max = 0.0;
+  /// The largest horizontal force the run shows beyond its noise [N]: max |F| less (sqrt(2 ln N) + 2) sqrt(2) sd, what N
+  /// noisy readings of two axes can add by chance. Friction's bound without sliding is this over F_z.
+  double force_max = 0.0;
   Prediction fitted;            ///< the models at the fitted values (the node's prediction, the configured model)
   std::vector<std::uint8_t> used_mask;
   /// Each message's force residual at the fit (measured - model at its latent slips) in standard deviations of the

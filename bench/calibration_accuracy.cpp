@@ -1,0 +1,110 @@
+// The calibration's accuracy over seeds (issue 23), printed as JSON for scripts/benchmark_report.py: synthetic runs of
+// a robot with known parameters (src/scenario/calibration_run.h: the bundled calibration manoeuvre, the forces from the
+// node's auto model, the demo's odometry noise, 0.05 m/s^2 on the IMU), each fitted from the parameter file's values
+// (k 2e8, mu 0.8; truth 1.5e8 and 0.6) as calibrate does: the fitted values, their standard deviations, whether the
+// residuals flagged a mismatch, the fit's time. Then the time of a 60-s run at 100 Hz, and runs with a bias on the IMU
+// and with another pressure distribution than the fit assumes (the mismatch must be flagged).
+//
+//   calibration_accuracy [--seeds 100] > calibration.json      (progress on stderr)
+
+// STL
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <string>
+#include <vector>
+
+// nlohmann
+#include <nlohmann/json.hpp>
+
+// Package
+#include "sphere_contact_estimator/core/calibration/contact_fit.h"
+#include "calibration_run.h"
+
+namespace sce = sphere_contact_estimator;
+using nlohmann::json;
+
+namespace
+{
+sce::EstimatorSettings truth()
+{
+  sce::EstimatorSettings s;
+  s.robot_mass = 3.0;
+  s.bristle_stiffness = 1.5e8;
+  s.friction = 0.6;
+  return s;
+}
+
+json fitRun(const sce::EstimatorSettings& t, const sce::CalibrationNoise& noise, double duration_scale)
+{
+  std::vector<sce::ScenarioSegment> segments = sce::calibrationSegments();
+  for (auto& s : segments)
+    s.duration *= duration_scale;
+  const sce::Scenario scenario(segments, t.rolling_radius);
+  std::vector<sce::CalibrationSample> samples;
+  for (const sce::CalibrationMessage& m : sce::calibrationRun(scenario, t, 100.0, noise))
+    samples.push_back(m.sample);
+  sce::EstimatorSettings file = truth();
+  file.bristle_stiffness = 2e8;
+  file.friction = 0.8;
+  const auto start = std::chrono::steady_clock::now();
+  const sce::FitResult r = sce::fitContact(samples, file);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const sce::FittedValue& k = r.values[static_cast<int>(sce::FitParameter::BristleStiffness)];
+  const sce::FittedValue& mu = r.values[static_cast<int>(sce::FitParameter::Friction)];
+  return json{ { "seed", noise.seed },
+               { "duration", scenario.duration() },
+               { "messages", r.samples },
+               { "used", r.used },
+               { "k", k.value },
+               { "k_sd", k.sd },
+               { "k_determined", k.determined },
+               { "mu", mu.value },
+               { "mu_sd", mu.sd },
+               { "mu_determined", mu.determined },
+               { "reduced_chi2", r.reduced_chi2 },
+               { "autocorrelation", r.residual_autocorrelation.maxCoeff() },
+               { "mismatch", r.mismatch() },
+               { "converged", r.converged },
+               { "seconds", seconds } };
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  int seeds = 100;
+  for (int i = 1; i + 1 < argc; ++i)
+    if (std::strcmp(argv[i], "--seeds") == 0)
+      seeds = std::atoi(argv[i + 1]);
+  const sce::EstimatorSettings t = truth();
+  json out{ { "truth", { { "k", t.bristle_stiffness }, { "mu", t.friction }, { "mass", t.robot_mass } } },
+            { "imu_noise", sce::CalibrationNoise{}.imu } };
+  for (int s = 1; s <= seeds; ++s)
+  {
+    sce::CalibrationNoise noise;
+    noise.seed = static_cast<std::uint64_t>(s);
+    out["runs"].push_back(fitRun(t, noise, 1.0));
+    std::cerr << "\rcalibration_accuracy: seed " << s << " of " << seeds << std::flush;
+  }
+  std::cerr << "\n";
+  for (int s = 1; s <= 3; ++s)
+  {
+    sce::CalibrationNoise noise;
+    noise.seed = 1000 + static_cast<std::uint64_t>(s);
+    out["long"].push_back(fitRun(t, noise, 3.0));  // 58.5 s at 100 Hz
+  }
+  for (int s = 1; s <= 5; ++s)
+  {
+    sce::CalibrationNoise noise;
+    noise.seed = 2000 + static_cast<std::uint64_t>(s);
+    noise.imu_bias = Eigen::Vector2d(0.2, 0.0);
+    out["imu_bias"].push_back(fitRun(t, noise, 1.0));
+    sce::EstimatorSettings uniform = t;
+    uniform.pressure = sce::PressureDistribution::Uniform;
+    noise.imu_bias.setZero();
+    out["uniform_pressure"].push_back(fitRun(uniform, noise, 1.0));
+  }
+  std::cout << out.dump(1) << "\n";
+  return 0;
+}
