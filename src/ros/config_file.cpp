@@ -12,6 +12,9 @@
 // yaml-cpp
 #include <yaml-cpp/yaml.h>
 
+// ROS
+#include <ros/package.h>
+
 // Package
 #include "sphere_contact_estimator/ros/parameter_enum.h"
 
@@ -151,6 +154,25 @@ void applyParameterFile(ContactEstimatorConfig& config, const std::string& path)
     }
   }
   config = next;
+}
+
+std::string defaultParameterFile()
+{
+  const std::string share = ros::package::getPath("sphere_contact_estimator");
+  if (share.empty())
+    throw std::runtime_error("the package is not on ROS_PACKAGE_PATH: give --params");
+  return share + "/config/contact_estimator.yaml";
+}
+
+void applyParameterSets(ContactEstimatorConfig& config, const std::vector<std::string>& sets)
+{
+  for (const std::string& s : sets)
+  {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos)
+      throw std::invalid_argument("--set " + s + ": expected NAME=VALUE");
+    setParameter(config, s.substr(0, eq), s.substr(eq + 1));
+  }
 }
 
 }  // namespace sphere_contact_estimator

@@ -26,7 +26,6 @@
 #include <CLI/CLI.hpp>
 
 // ROS
-#include <ros/package.h>
 #include <ros/time.h>
 
 // Package
@@ -121,20 +120,9 @@ int main(int argc, char** argv)
   {
     ros::Time::init();
     if (params.empty())
-    {
-      const std::string share = ros::package::getPath("sphere_contact_estimator");
-      if (share.empty())
-        throw std::runtime_error("the package is not on ROS_PACKAGE_PATH: give --params");
-      params = share + "/config/contact_estimator.yaml";
-    }
+      params = sce::defaultParameterFile();
     sce::applyParameterFile(options.config, params);
-    for (const std::string& s : sets)
-    {
-      const auto eq = s.find('=');
-      if (eq == std::string::npos)
-        throw std::invalid_argument("--set " + s + ": expected NAME=VALUE");
-      sce::setParameter(options.config, s.substr(0, eq), s.substr(eq + 1));
-    }
+    sce::applyParameterSets(options.config, sets);
     if (!brush_model.empty())
       options.config.brush_model = brush_models.at(brush_model);
     if (!sliding_law.empty())

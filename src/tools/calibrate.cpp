@@ -179,20 +179,9 @@ int main(int argc, char** argv)
     ros::Time::init();
     const auto started = std::chrono::steady_clock::now();
     if (params.empty())
-    {
-      const std::string share = ros::package::getPath("sphere_contact_estimator");
-      if (share.empty())
-        throw std::runtime_error("the package is not on ROS_PACKAGE_PATH: give --params");
-      params = share + "/config/contact_estimator.yaml";
-    }
+      params = sce::defaultParameterFile();
     sce::applyParameterFile(read.config, params);
-    for (const std::string& s : sets)
-    {
-      const auto eq = s.find('=');
-      if (eq == std::string::npos)
-        throw std::invalid_argument("--set " + s + ": expected NAME=VALUE");
-      sce::setParameter(read.config, s.substr(0, eq), s.substr(eq + 1));
-    }
+    sce::applyParameterSets(read.config, sets);
     const std::vector<std::string> bags = sce::expandBagInputs(inputs);
     if (bags.empty())
       throw std::runtime_error("no bag among the inputs");

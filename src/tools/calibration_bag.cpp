@@ -15,7 +15,6 @@
 
 // ROS
 #include <nav_msgs/Odometry.h>
-#include <ros/package.h>
 #include <ros/time.h>
 #include <rosbag/bag.h>
 #include <sensor_msgs/Imu.h>
@@ -55,20 +54,9 @@ int main(int argc, char** argv)
     ros::Time::init();
     sce::ContactEstimatorConfig config = sce::ContactEstimatorConfig::__getDefault__();
     if (params.empty())
-    {
-      const std::string share = ros::package::getPath("sphere_contact_estimator");
-      if (share.empty())
-        throw std::runtime_error("the package is not on ROS_PACKAGE_PATH: give --params");
-      params = share + "/config/contact_estimator.yaml";
-    }
+      params = sce::defaultParameterFile();
     sce::applyParameterFile(config, params);
-    for (const std::string& s : sets)
-    {
-      const auto eq = s.find('=');
-      if (eq == std::string::npos)
-        throw std::invalid_argument("--set " + s + ": expected NAME=VALUE");
-      sce::setParameter(config, s.substr(0, eq), s.substr(eq + 1));
-    }
+    sce::applyParameterSets(config, sets);
     const sce::EstimatorSettings truth = sce::settingsFromConfig(config);
     std::vector<sce::ScenarioSegment> segments = sce::calibrationSegments();
     for (auto& s : segments)

@@ -2,6 +2,7 @@
 
 // STL
 #include <string>
+#include <vector>
 
 // Package
 #include "sphere_contact_estimator/ContactEstimatorConfig.h"
@@ -17,5 +18,13 @@ void setParameter(ContactEstimatorConfig& config, const std::string& name, const
 /// to values). Keys the node reads at start-up only (queue_size) are ignored; anything else unknown, or a
 /// file that cannot be read, throws std::invalid_argument naming the file and the key.
 void applyParameterFile(ContactEstimatorConfig& config, const std::string& path);
+
+/// The package's own parameter file (config/contact_estimator.yaml, as contact_estimator.launch loads it). Throws
+/// std::runtime_error when the package is not on ROS_PACKAGE_PATH (the offline tools then ask for --params).
+std::string defaultParameterFile();
+
+/// Applies command-line overrides NAME=VALUE in order (setParameter); throws std::invalid_argument naming a malformed
+/// one.
+void applyParameterSets(ContactEstimatorConfig& config, const std::vector<std::string>& sets);
 
 }  // namespace sphere_contact_estimator
