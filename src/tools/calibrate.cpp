@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <thread>
 
 // CLI11
 #include <CLI/CLI.hpp>
@@ -171,6 +172,9 @@ int main(int argc, char** argv)
                  "the IMU's noise, sd of its acceleration on each axis [m/s^2] (default: the messages' covariance, else "
                  "estimated from the run)")
       ->check(CLI::PositiveNumber);
+  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  app.add_option("--jobs,-j", jobs, "threads for the fit (default: all cores; the values agree to rounding across counts)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--fit", fit, "the parameters to fit")->delimiter(',')->check(CLI::IsMember({ "bristle_stiffness", "friction" }));
   CLI11_PARSE(app, argc, argv);
 
@@ -188,6 +192,7 @@ int main(int argc, char** argv)
     const sce::CalibrationRecording rec = sce::readCalibrationBags(bags, read);
     const sce::EstimatorSettings settings = sce::settingsFromConfig(read.config);
     sce::FitOptions options;
+    options.threads = jobs;
     for (int j = 0; j < static_cast<int>(sce::FitParameter::Count); ++j)
       options.fit[j] = std::find(fit.begin(), fit.end(), sce::parameterName(static_cast<sce::FitParameter>(j))) != fit.end();
     const sce::FitResult r = sce::fitContact(rec.samples, settings, options);

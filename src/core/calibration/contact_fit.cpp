@@ -389,7 +389,7 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::DENSE_SCHUR;  // the latent slips eliminated: a system of the parameters alone
     so.max_num_iterations = options.max_iterations;
-    so.num_threads = 1;
+    so.num_threads = std::max(1, options.threads);  // the residuals are independent: each builds its own model
     so.logging_type = getenv("SCE_CERES_LOG") ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
     so.minimizer_progress_to_stdout = getenv("SCE_CERES_LOG") != nullptr;
     so.function_tolerance = getenv("SCE_FTOL") ? atof(getenv("SCE_FTOL")) : 1e-6;

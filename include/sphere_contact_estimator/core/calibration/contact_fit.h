@@ -78,6 +78,9 @@ struct FitOptions
   /// run from the node's auto model, keeping them put k 0.45 sd high on average over 40 seeds).
   double max_lag = 0.02;
   double lag_window = 0.05;  ///< half-width of the window dV_r/dt is fitted over [s]
+  /// Threads evaluating the messages' residuals (Ceres Solver's num_threads): the fitted values agree to rounding
+  /// across thread counts, not bit for bit (the sums' order changes).
+  int threads = 1;
 };
 
 struct FittedValue
