@@ -264,6 +264,14 @@ int main(int argc, char** argv)
     }
     if (r.correlation.rows() == 2)
       std::printf("  correlation of the two: %.2f\n", r.correlation(0, 1));
+    {
+      // what the data determine is k a^3 (the slip stiffness), with a held at the parameter file's
+      const sce::FittedValue& k = r.values[static_cast<int>(sce::FitParameter::BristleStiffness)];
+      const double a = settings.brushParameters().a, a3 = a * a * a;
+      if (k.fitted && k.determined)
+        std::printf("  with a = %.4g m held: k a^3 = %.4g +- %.2g N (slip stiffness C_sigma = 8/3 k a^3 = %.4g N, "
+                    "any pressure)\n", a, k.value * a3, k.sd * a3, 8.0 / 3.0 * k.value * a3);
+    }
     std::printf("  fit: %s, %.1f s\n", quality(r).c_str(), seconds);
     for (const std::string& w : mismatches(r))
       std::printf("  WARNING: %s\n", w.c_str());
