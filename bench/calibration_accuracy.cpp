@@ -27,15 +27,6 @@ using nlohmann::json;
 
 namespace
 {
-sce::EstimatorSettings truth()
-{
-  sce::EstimatorSettings s;
-  s.robot_mass = 3.0;
-  s.bristle_stiffness = 1.5e8;
-  s.friction = 0.6;
-  return s;
-}
-
 json fitRun(const sce::EstimatorSettings& t, const sce::CalibrationNoise& noise, double duration_scale)
 {
   std::vector<sce::ScenarioSegment> segments = sce::calibrationSegments();
@@ -45,7 +36,7 @@ json fitRun(const sce::EstimatorSettings& t, const sce::CalibrationNoise& noise,
   std::vector<sce::CalibrationSample> samples;
   for (const sce::CalibrationMessage& m : sce::calibrationRun(scenario, t, 100.0, noise))
     samples.push_back(m.sample);
-  sce::EstimatorSettings file = truth();
+  sce::EstimatorSettings file = sce::calibrationTruth();
   file.bristle_stiffness = 2e8;
   file.friction = 0.8;
   const auto start = std::chrono::steady_clock::now();
@@ -77,7 +68,7 @@ int main(int argc, char** argv)
   for (int i = 1; i + 1 < argc; ++i)
     if (std::strcmp(argv[i], "--seeds") == 0)
       seeds = std::atoi(argv[i + 1]);
-  const sce::EstimatorSettings t = truth();
+  const sce::EstimatorSettings t = sce::calibrationTruth();
   json out{ { "truth", { { "k", t.bristle_stiffness }, { "mu", t.friction }, { "mass", t.robot_mass } } },
             { "imu_noise", sce::CalibrationNoise{}.imu } };
   for (int s = 1; s <= seeds; ++s)

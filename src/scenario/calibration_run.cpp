@@ -41,13 +41,7 @@ std::vector<CalibrationMessage> calibrationRun(const Scenario& scenario, const E
     exact_in.v_contact = toGround(s.velocity_body);
     exact_in.body_heading = s.yaw;
     const ContactEstimateData* e = estimator.update(exact_in);
-    Eigen::Vector2d force = Eigen::Vector2d::Zero();
-    if (e)
-    {
-      const double ch = std::cos(e->heading), sh = std::sin(e->heading);
-      const Eigen::Vector2d contact(e->brush.F_x - e->rolling_resistance_force, e->brush.F_y);
-      force = Eigen::Vector2d(ch * contact.x() - sh * contact.y(), sh * contact.x() + ch * contact.y());
-    }
+    const Eigen::Vector2d force = e ? robotForce(*e) : Eigen::Vector2d::Zero();
     m.force_true = Eigen::Vector3d(force.x(), force.y(), 0.0);
     // the IMU: acceleration F / m, less gravity (an accelerometer at rest reads +g up), in body axes, with noise
     const Eigen::Vector3d f_ground(force.x() / mass, force.y() / mass, g);
@@ -78,6 +72,15 @@ std::vector<CalibrationMessage> calibrationRun(const Scenario& scenario, const E
     out.push_back(m);
   }
   return out;
+}
+
+EstimatorSettings calibrationTruth()
+{
+  EstimatorSettings s;
+  s.robot_mass = 3.0;
+  s.bristle_stiffness = 1.5e8;
+  s.friction = 0.6;
+  return s;
 }
 
 std::vector<ScenarioSegment> calibrationSegments()

@@ -46,6 +46,10 @@ struct CalibrationMessage
 std::vector<CalibrationMessage> calibrationRun(const Scenario& scenario, const EstimatorSettings& truth, double rate,
                                                const CalibrationNoise& noise);
 
+/// The robot of the bundled calibration run (data/calibration.bag), its tests and its benchmark: the default robot at
+/// 3 kg with k = 1.5e8 N/m^3 and mu = 0.6.
+EstimatorSettings calibrationTruth();
+
 /// The segments of the bundled calibration run: rolling at several speeds with small slips (the slip stiffness), hard
 /// braking and a lateral skid (friction), turns with spin.
 std::vector<ScenarioSegment> calibrationSegments();

@@ -80,10 +80,8 @@ Eigen::Vector2d brushForce(const EstimatorSettings& s, const Message& m, const d
 // the rolling resistance against the rolling direction.
 Eigen::Vector2d groundForce(const Message& m, const Eigen::Vector2d& brush, bool with_rolling_resistance = true)
 {
-  const Eigen::Vector2d contact =
-      paper_frame::toRos(brush) - Eigen::Vector2d(with_rolling_resistance ? m.rolling_resistance : 0.0, 0.0);
-  const double c = std::cos(m.heading), sn = std::sin(m.heading);
-  return { c * contact.x() - sn * contact.y(), sn * contact.x() + c * contact.y() };
+  return contactToGround(m.heading, paper_frame::toRos(brush) -
+                                        Eigen::Vector2d(with_rolling_resistance ? m.rolling_resistance : 0.0, 0.0));
 }
 
 // The measured force against the model's at the message's latent (true) slips, in units of the force's noise.
@@ -174,9 +172,9 @@ private:
   const Message& m_;
 };
 
-Rejection rejectionOf(const CalibrationSample& s, const Prediction& p, std::size_t i, bool& rejected)
+// Why message i stays out of the fit; Rejection::Count where it enters.
+Rejection rejectionOf(const CalibrationSample& s, const Prediction& p, std::size_t i)
 {
-  rejected = true;
   if (!s.has_force || !(s.force_sd > 0.0))
     return Rejection::NoImu;
   if (!p.answered[i])
@@ -187,7 +185,6 @@ Rejection rejectionOf(const CalibrationSample& s, const Prediction& p, std::size
     return Rejection::Standstill;
   if (p.flags[i] & estimate_flags::kMotionWithinNoise)
     return Rejection::WithinNoise;
-  rejected = false;
   return Rejection::Count;
 }
 }  // namespace
@@ -253,10 +250,7 @@ Prediction predictForces(const std::vector<CalibrationSample>& samples, const Es
     if (!e)
       continue;
     p.answered[i] = 1;
-    // the contact frame's forces on the sphere (x along the rolling direction), the rolling resistance against it
-    const double c = std::cos(e->heading), s = std::sin(e->heading);
-    const Eigen::Vector2d contact(e->brush.F_x - e->rolling_resistance_force, e->brush.F_y);
-    p.force[i] = Eigen::Vector2d(c * contact.x() - s * contact.y(), s * contact.x() + c * contact.y());
+    p.force[i] = robotForce(*e);
     p.sliding[i] = e->brush.sliding_fraction;
     p.slip[i] = e->slip;
     p.spin[i] = e->spin;
@@ -319,14 +313,10 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
   std::vector<Message> messages;
   for (std::size_t i = 0; i < samples.size(); ++i)
   {
-    bool rejected = false;
-    Rejection r = rejectionOf(samples[i], first, i, rejected);
-    if (!rejected && lag[i] > options.max_lag)
-    {
-      rejected = true;
+    Rejection r = rejectionOf(samples[i], first, i);
+    if (r == Rejection::Count && lag[i] > options.max_lag)
       r = Rejection::Transient;
-    }
-    if (rejected)
+    if (r != Rejection::Count)
     {
       ++out.rejected[static_cast<int>(r)];
       out.rejection[i] = r;
@@ -390,10 +380,9 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
     so.linear_solver_type = ceres::DENSE_SCHUR;  // the latent slips eliminated: a system of the parameters alone
     so.max_num_iterations = options.max_iterations;
     so.num_threads = std::max(1, options.threads);  // the residuals are independent: each builds its own model
-    so.logging_type = getenv("SCE_CERES_LOG") ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
-    so.minimizer_progress_to_stdout = getenv("SCE_CERES_LOG") != nullptr;
-    so.function_tolerance = getenv("SCE_FTOL") ? atof(getenv("SCE_FTOL")) : 1e-6;
-    so.parameter_tolerance = getenv("SCE_PTOL") ? atof(getenv("SCE_PTOL")) : 1e-8;
+    so.logging_type = ceres::SILENT;
+    so.function_tolerance = 1e-6;  // of the cost: the models' own error keeps it from settling much finer
+    so.parameter_tolerance = 1e-8;
     ceres::Solve(so, &problem, &summary);
     out.iterations += static_cast<int>(summary.iterations.size());
   };
@@ -441,6 +430,9 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
   int sliding_samples = 0;
   out.fitted = predictForces(samples, result);
   bool first_used = true;
+  // the largest force the run shows for sure: less than the largest of N noisy readings can reach by noise alone
+  // (the maximum of N standard normals stays below sqrt(2 ln N) + 2 but for a share far below a percent)
+  const double margin = std::sqrt(2.0 * std::log(std::max<double>(2.0, static_cast<double>(messages.size())))) + 2.0;
   for (std::size_t i = 0; i < messages.size(); ++i)
   {
     const Message& m = messages[i];
@@ -471,9 +463,6 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
     first_used = false;
     out.slip_max = std::max(out.slip_max, out.fitted.slip[k].norm());
     out.sliding_max = std::max(out.sliding_max, out.fitted.sliding[k]);
-    // the largest force the run shows for sure: less than the largest of N noisy readings can reach by noise alone
-    // (the maximum of N standard normals stays below sqrt(2 ln N) + 2 but for a share far below a percent)
-    const double margin = std::sqrt(2.0 * std::log(std::max<double>(2.0, static_cast<double>(messages.size())))) + 2.0;
     out.force_max = std::max(out.force_max, m.force.norm() - margin * std::sqrt(2.0) * m.force_sd);
     if (out.fitted.sliding[k] >= options.sliding_share)
       ++sliding_samples;
@@ -500,12 +489,10 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
     }
     out.residual_autocorrelation[axis] = den > 0.0 ? num / den : 0.0;
   }
-  out.replays = 2;
   out.converged = n == 0 || best_summary.termination_type == ceres::CONVERGENCE;
   // five residuals and three latent slips a message: two degrees of freedom each, less the parameters
   const int dof = std::max(1, 2 * out.used - n);
   out.reduced_chi2 = chi2 / dof;
-  out.rms = std::sqrt(out.reduced_chi2);
   const double inflate = std::max(1.0, out.reduced_chi2);  // the IMU noisier than it said: wider intervals
   Eigen::MatrixXd cov = Eigen::MatrixXd::Constant(n, n, std::numeric_limits<double>::infinity());
   if (n > 0)

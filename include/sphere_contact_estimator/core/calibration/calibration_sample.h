@@ -1,5 +1,8 @@
 #pragma once
 
+// STL
+#include <cmath>
+
 // Eigen
 #include <Eigen/Core>
 
@@ -20,6 +23,20 @@ struct CalibrationSample
   double force_sd = 0.0;                            ///< its standard deviation on each axis [N]
   bool has_force = false;                           ///< an IMU sample was paired with this message
 };
+
+/// A horizontal vector from the contact frame (ROS axes, x along the rolling direction) into the ground frame.
+inline Eigen::Vector2d contactToGround(double heading, const Eigen::Vector2d& v)
+{
+  const double c = std::cos(heading), s = std::sin(heading);
+  return { c * v.x() - s * v.y(), s * v.x() + c * v.y() };
+}
+
+/// The horizontal force on the robot in the ground frame that an estimate gives: the brush force and the rolling
+/// resistance against the rolling direction (what the node publishes as brush_wrench and rolling_resistance_wrench).
+inline Eigen::Vector2d robotForce(const ContactEstimateData& e)
+{
+  return contactToGround(e.heading, Eigen::Vector2d(e.brush.F_x - e.rolling_resistance_force, e.brush.F_y));
+}
 
 /// The IMU's specific force f (ground frame, m/s^2) to the horizontal force on a robot of mass m: m (f + g)_xy.
 inline Eigen::Vector2d forceFromSpecificForce(const Eigen::Vector3d& f_ground, double mass)

@@ -103,7 +103,6 @@ struct FitResult
   int samples = 0;              ///< all messages
   int used = 0;                 ///< entering the fit
   std::array<int, static_cast<int>(Rejection::Count)> rejected{};
-  double rms = 0.0;             ///< of the residuals (force and slips, per degree of freedom), in standard deviations
   double reduced_chi2 = 0.0;    ///< sum of squared residuals / (used residuals - fitted parameters)
   /// The force residuals' lag-1 autocorrelation on each ground axis, over the used messages in order. A run that is
   /// not the model's (another pressure distribution, an IMU bias, a floor that gives) leaves streaks of one sign: 0.58-
@@ -117,7 +116,6 @@ struct FitResult
   static double mismatchThreshold(int used);
   bool converged = false;
   int iterations = 0;
-  int replays = 0;              ///< estimator replays the fit took
   // what the used samples covered
   double speed_min = 0.0, speed_max = 0.0, slip_max = 0.0, sliding_max = 0.0;
   /// The largest horizontal force the run shows beyond its noise [N]: max |F| less (sqrt(2 ln N) + 2) sqrt(2) sd, what N
