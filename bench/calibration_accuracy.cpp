@@ -2,16 +2,21 @@
 // a robot with known parameters (src/scenario/calibration_run.h: the bundled calibration manoeuvre, the forces from the
 // node's auto model, the demo's odometry noise, 0.05 m/s^2 on the IMU), each fitted from the parameter file's values
 // (k 2e8, mu 0.8; truth 1.5e8 and 0.6) as calibrate does: the fitted values, their standard deviations, whether the
-// residuals flagged a mismatch, the fit's time. Then the time of a 60-s run at 100 Hz, and runs with a bias on the IMU
-// and with another pressure distribution than the fit assumes (the mismatch must be flagged).
+// residuals flagged a mismatch, the fit's time. Then the time of a 60-s run at 100 Hz, runs with a bias on the IMU and
+// with another pressure distribution than the fit assumes (the mismatch must be flagged), and robots drawn at random
+// over the envelope a user reaches (mass, k, mu, patch radius, IMU and odometry noise), fitted from the same file
+// values: there the file's mu may lie far from the truth and a run may give mu only as a bound, and every interval
+// and bound must still hold the truth.
 //
-//   calibration_accuracy [--seeds 100] > calibration.json      (progress on stderr)
+//   calibration_accuracy [--seeds 100] [--robots 100] > calibration.json      (progress on stderr)
 
 // STL
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -27,7 +32,8 @@ using nlohmann::json;
 
 namespace
 {
-json fitRun(const sce::EstimatorSettings& t, const sce::CalibrationNoise& noise, double duration_scale)
+json fitRun(const sce::EstimatorSettings& t, const sce::CalibrationNoise& noise, double duration_scale,
+            bool robot = false)
 {
   std::vector<sce::ScenarioSegment> segments = sce::calibrationSegments();
   for (auto& s : segments)
@@ -36,7 +42,8 @@ json fitRun(const sce::EstimatorSettings& t, const sce::CalibrationNoise& noise,
   std::vector<sce::CalibrationSample> samples;
   for (const sce::CalibrationMessage& m : sce::calibrationRun(scenario, t, 100.0, noise))
     samples.push_back(m.sample);
-  sce::EstimatorSettings file = sce::calibrationTruth();
+  // the file: the robot as its user knows it (mass, patch radius, the parabolic pressure), k and mu guessed
+  sce::EstimatorSettings file = robot ? t : sce::calibrationTruth();
   file.bristle_stiffness = 2e8;
   file.friction = 0.8;
   const auto start = std::chrono::steady_clock::now();
@@ -50,24 +57,37 @@ json fitRun(const sce::EstimatorSettings& t, const sce::CalibrationNoise& noise,
                { "used", r.used },
                { "k", k.value },
                { "k_sd", k.sd },
+               { "k_low", k.low },
+               { "k_high", k.high },
                { "k_determined", k.determined },
                { "mu", mu.value },
                { "mu_sd", mu.sd },
+               { "mu_low", mu.low },
+               { "mu_bound", mu.lower_bound },
                { "mu_determined", mu.determined },
                { "reduced_chi2", r.reduced_chi2 },
                { "autocorrelation", r.residual_autocorrelation.maxCoeff() },
                { "mismatch", r.mismatch() },
                { "converged", r.converged },
-               { "seconds", seconds } };
+               { "seconds", seconds },
+               { "truth", robot ? json{ { "k", t.bristle_stiffness },
+                                         { "mu", t.friction },
+                                         { "mass", t.robot_mass },
+                                         { "a", t.patch_radius },
+                                         { "imu_noise", noise.imu },
+                                         { "odometry_noise_scale", noise.velocity / sce::CalibrationNoise{}.velocity } }
+                                : json() } };
 }
 }  // namespace
 
 int main(int argc, char** argv)
 {
-  int seeds = 100;
+  int seeds = 100, robots = 100;
   for (int i = 1; i + 1 < argc; ++i)
     if (std::strcmp(argv[i], "--seeds") == 0)
       seeds = std::atoi(argv[i + 1]);
+    else if (std::strcmp(argv[i], "--robots") == 0)
+      robots = std::atoi(argv[i + 1]);
   const sce::EstimatorSettings t = sce::calibrationTruth();
   json out{ { "truth", { { "k", t.bristle_stiffness }, { "mu", t.friction }, { "mass", t.robot_mass } } },
             { "imu_noise", sce::CalibrationNoise{}.imu } };
@@ -96,6 +116,27 @@ int main(int argc, char** argv)
     noise.imu_bias.setZero();
     out["uniform_pressure"].push_back(fitRun(uniform, noise, 1.0));
   }
+  // robots at random over the envelope (seeded): a light or heavy robot, soft or stiff bristles, low or high friction,
+  // small or large patch, a quiet or noisy IMU and odometry
+  std::mt19937_64 rng(777);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < robots; ++i)
+  {
+    sce::EstimatorSettings r = t;
+    r.robot_mass = 2.0 + 6.0 * u(rng);
+    r.bristle_stiffness = std::pow(10.0, 7.7 + 1.0 * u(rng));
+    r.friction = 0.3 + 0.7 * u(rng);
+    r.patch_radius = 0.006 + 0.01 * u(rng);
+    sce::CalibrationNoise noise;
+    noise.seed = 3000 + static_cast<std::uint64_t>(i);
+    noise.imu = 0.02 + 0.08 * u(rng);
+    const double scale = 0.5 + 1.0 * u(rng);
+    noise.velocity *= scale;
+    noise.omega *= scale;
+    out["robots"].push_back(fitRun(r, noise, 1.0, true));
+    std::cerr << "\rcalibration_accuracy: robot " << i + 1 << " of " << robots << std::flush;
+  }
+  std::cerr << "\n";
   std::cout << out.dump(1) << "\n";
   return 0;
 }

@@ -94,8 +94,8 @@ std::string valueComment(const sce::FittedValue& v)
   if (!v.fitted)
     return "";
   if (v.determined)
-    return "fitted: sd " + format("%.3g", v.sd) + ", 95 % [" + format("%.4g", v.value - 1.96 * v.sd) + ", " +
-           format("%.4g", v.value + 1.96 * v.sd) + "], start " + format("%.4g", v.start);
+    return "fitted: sd " + format("%.3g", v.sd) + ", 95 % [" + format("%.4g", v.low) + ", " + format("%.4g", v.high) +
+           "], start " + format("%.4g", v.start) + (v.note.empty() ? "" : "; " + v.note);
   if (v.lower_bound > 0.0)
     return "NOT determined by the data (" + v.note + "): >= " + format("%.3g", v.lower_bound) + "; this value kept";
   return "NOT determined by the data (" + v.note + ", sd " + format("%.3g", v.sd) + "); the parameter file's value kept";
@@ -252,11 +252,10 @@ int main(int argc, char** argv)
     {
       if (!v.fitted)
         continue;
-      const std::string interval =
-          "[" + format("%.4g", v.value - 1.96 * v.sd) + ", " + format("%.4g", v.value + 1.96 * v.sd) + "]";
+      const std::string interval = "[" + format("%.4g", v.low) + ", " + format("%.4g", v.high) + "]";
       if (v.determined)
-        std::printf("  %-18s %12.4g %12.5g %12.3g %27s  determined\n", sce::parameterName(v.parameter), v.start,
-                    v.value, v.sd, interval.c_str());
+        std::printf("  %-18s %12.4g %12.5g %12.3g %27s  determined%s\n", sce::parameterName(v.parameter), v.start,
+                    v.value, v.sd, interval.c_str(), v.note.empty() ? "" : (" " + v.note).c_str());
       else
         std::printf("  %-18s %12.4g %12s %12s %27s  %s\n", sce::parameterName(v.parameter), v.start,
                     v.lower_bound > 0.0 ? (">= " + format("%.3g", v.lower_bound)).c_str() : "-", "-", "-",
@@ -269,8 +268,8 @@ int main(int argc, char** argv)
       const sce::FittedValue& k = r.values[static_cast<int>(sce::FitParameter::BristleStiffness)];
       const double a = settings.brushParameters().a, a3 = a * a * a;
       if (k.fitted && k.determined)
-        std::printf("  with a = %.4g m held: k a^3 = %.4g +- %.2g N (slip stiffness C_sigma = 8/3 k a^3 = %.4g N, "
-                    "any pressure)\n", a, k.value * a3, k.sd * a3, 8.0 / 3.0 * k.value * a3);
+        std::printf("  with a = %.4g m held: k a^3 = %.4g N, 95 %% [%.4g, %.4g] (slip stiffness C_sigma = 8/3 k a^3 = "
+                    "%.4g N, any pressure)\n", a, k.value * a3, k.low * a3, k.high * a3, 8.0 / 3.0 * k.value * a3);
     }
     std::printf("  fit: %s, %.1f s\n", quality(r).c_str(), seconds);
     for (const std::string& w : mismatches(r))

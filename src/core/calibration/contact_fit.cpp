@@ -3,6 +3,7 @@
 // STL
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
@@ -27,8 +28,23 @@ constexpr int kParameters = static_cast<int>(FitParameter::Count);
 // target of mu F_z) stays a small part of the difference
 constexpr double kSlipStep = 0.1;  // of the slip's standard deviation
 constexpr std::size_t kSubsetMessages = 400;  // a long run's first solve
+constexpr double kInterval95 = 1.96;          // a 95 % interval's half-width in standard deviations
+// the parameters' ranges in the fit: the brush's validity (BrushParameters), friction's in the parameter file
+constexpr double kStiffnessMin = 1e3, kStiffnessMax = 1e18;  // [N/m^3]
+constexpr double kFrictionMin = 1e-3, kFrictionMax = 100.0;
+
+std::string formatValue(double v)
+{
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", v);
+  return buffer;
+}
 
 double& field(EstimatorSettings& s, FitParameter p)
+{
+  return p == FitParameter::BristleStiffness ? s.bristle_stiffness : s.friction;
+}
+double field(const EstimatorSettings& s, FitParameter p)
 {
   return p == FitParameter::BristleStiffness ? s.bristle_stiffness : s.friction;
 }
@@ -60,6 +76,7 @@ public:
     return s;
   }
   FitParameter parameter(int j) const { return fitted_[j]; }
+  double baseValue(int j) const { return field(base_, fitted_[j]); }
 
 private:
   EstimatorSettings base_;
@@ -68,11 +85,13 @@ private:
 
 // The brush force (paper frame, rolling along +x) of the steady model (Sects. 3, 6: the state a message's slips settle
 // to within a patch transit, a few messages) at slips z (paper frame).
-Eigen::Vector2d brushForce(const EstimatorSettings& s, const Message& m, const double* z)
+Eigen::Vector2d brushForce(const EstimatorSettings& s, const Message& m, const double* z, double* sliding = nullptr)
 {
   BrushSteady steady(s.brushParameters());
   const ContactKinematics kin = ContactKinematics::fromSlips(Eigen::Vector2d(z[0], z[1]), z[2], m.chi_gamma, m.speed);
   const BrushForces f = steady.update(kin, 0.0);
+  if (sliding)
+    *sliding = f.sliding_fraction;
   return { f.F_x, f.F_y };
 }
 
@@ -99,6 +118,20 @@ public:
     mutable_parameter_block_sizes()->push_back(3);
   }
   bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override
+  {
+    // a step outside the models' range (the solver's trial point) is refused: Ceres then takes a shorter one
+    try
+    {
+      return evaluate(x, residuals, jacobians);
+    }
+    catch (const std::invalid_argument&)
+    {
+      return false;
+    }
+  }
+
+private:
+  bool evaluate(double const* const* x, double* residuals, double** jacobians) const
   {
     const EstimatorSettings s = p_.at(x[0]);
     const Eigen::Vector2d B = brushForce(s, m_, x[1]);
@@ -144,7 +177,6 @@ public:
     return true;
   }
 
-private:
   const Parameters& p_;
   const Message& m_;
 };
@@ -171,6 +203,148 @@ public:
 private:
   const Message& m_;
 };
+
+// One solve's outcome: the fitted parameters (log of their ratio to the settings') and each message's latent slips.
+struct Solution
+{
+  std::vector<double> x;
+  std::vector<Eigen::Vector3d> latent;
+  ceres::Solver::Summary summary;
+};
+
+// One Levenberg-Marquardt solve from x over every stride-th message (the latent slips of the others stay at the
+// measured ones), the latent slips starting at `latent` where given, else at the measured ones.
+Solution solve(const std::vector<Message>& messages, const Parameters& params, const FitOptions& options,
+               const std::vector<double>& x, const std::vector<Eigen::Vector3d>* latent, std::size_t stride,
+               int& iterations)
+{
+  Solution out;
+  out.x = x;
+  out.latent.resize(messages.size());
+  ceres::Problem::Options po;
+  po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+  ceres::Problem problem(po);
+  for (std::size_t i = 0; i < messages.size(); ++i)
+  {
+    out.latent[i] = latent && latent->size() == messages.size() ? (*latent)[i] : messages[i].slips;
+    if (i % stride != 0)
+      continue;
+    problem.AddResidualBlock(new ForceResidual(params, messages[i]), new ceres::HuberLoss(options.huber),
+                             out.x.data(), out.latent[i].data());
+    problem.AddResidualBlock(new SlipPrior(messages[i]), nullptr, out.latent[i].data());
+  }
+  for (int j = 0; j < params.size() && problem.NumResidualBlocks() > 0; ++j)
+  {
+    // the parameters within their ranges (x is the log of the ratio to the settings' value)
+    const bool k = params.parameter(j) == FitParameter::BristleStiffness;
+    const double base = params.baseValue(j);
+    problem.SetParameterLowerBound(out.x.data(), j, std::log((k ? kStiffnessMin : kFrictionMin) / base));
+    problem.SetParameterUpperBound(out.x.data(), j, std::log((k ? kStiffnessMax : kFrictionMax) / base));
+  }
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_SCHUR;  // the latent slips eliminated: a system of the parameters alone
+  so.max_num_iterations = options.max_iterations;
+  so.num_threads = std::max(1, options.threads);  // the residuals are independent: each builds its own model
+  so.logging_type = ceres::SILENT;
+  so.function_tolerance = 1e-6;  // of the cost: the models' own error keeps it from settling much finer
+  so.parameter_tolerance = 1e-8;
+  ceres::Solve(so, &problem, &out.summary);
+  iterations += static_cast<int>(out.summary.iterations.size());
+  return out;
+}
+
+// One message's share of the parameters' information with its latent slips marginalised (the Schur complement of
+// J^T J: A^T A - A^T B (B^T B + P^T P)^-1 B^T A, A and B the force residuals' derivatives in the parameters and the
+// slips, P the prior's whitening) and of the chi-square (the force's residuals and the latent slips'). False where the
+// model cannot be evaluated.
+bool addInformation(const Parameters& params, const Message& m, const double* x, const Eigen::Vector3d& latent,
+                    Eigen::MatrixXd& info, double& chi2, Eigen::Vector2d* residual = nullptr)
+{
+  const int n = params.size();
+  ForceResidual f(params, m);
+  const double* xs[2] = { x, latent.data() };
+  double r[2];
+  std::vector<double> A(2 * std::max(n, 1), 0.0);
+  double B[6];
+  double* jac[2] = { n > 0 ? A.data() : nullptr, B };
+  if (!f.Evaluate(xs, r, jac))
+    return false;
+  chi2 += r[0] * r[0] + r[1] * r[1] + (m.prior * (latent - m.slips)).squaredNorm();
+  if (residual)
+    *residual = Eigen::Vector2d(r[0], r[1]);
+  if (n > 0)
+  {
+    const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> Am(A.data(), 2, n);
+    const Eigen::Map<const Eigen::Matrix<double, 2, 3, Eigen::RowMajor>> Bm(B);
+    const Eigen::Matrix3d BB = Bm.transpose() * Bm + m.prior.transpose() * m.prior;
+    const Eigen::MatrixXd BA = Bm.transpose() * Am;
+    info += Am.transpose() * Am - BA.transpose() * BB.ldlt().solve(BA);
+  }
+  return true;
+}
+
+// The covariance of the parameters' logs from their information, widened by the reduced chi-square where that
+// exceeds 1 (the IMU noisier than it said); infinite where the information is singular.
+Eigen::MatrixXd covarianceOf(const Eigen::MatrixXd& info, double reduced_chi2)
+{
+  const int n = static_cast<int>(info.rows());
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Constant(n, n, std::numeric_limits<double>::infinity());
+  if (n > 0)
+  {
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(info);
+    if (ldlt.info() == Eigen::Success && ldlt.isPositive() && info.diagonal().minCoeff() > 0.0)
+      cov = ldlt.solve(Eigen::MatrixXd::Identity(n, n)) * std::max(1.0, reduced_chi2);
+  }
+  return cov;
+}
+
+// The stiffness fitted with friction held at mu, over every stride-th message: a point of the profile of the fit's
+// cost over mu, where the data give mu only a bound.
+struct ProfilePoint
+{
+  double mu = 0.0, k = 0.0;
+  double sd = std::numeric_limits<double>::infinity();  // of k, widened by the reduced chi-square
+  double cost = std::numeric_limits<double>::infinity();  // Ceres' (half the robust sum of squares)
+  double reduced_chi2 = 0.0;
+  double sliding = 0.0;  // the largest sliding share of the patch over the messages, at the fit
+  bool usable = false;
+  std::vector<Eigen::Vector3d> latent;  // the messages' latent slips at the fit (a neighbouring point's start)
+};
+
+ProfilePoint profileAt(const std::vector<Message>& messages, const EstimatorSettings& base, double mu, double k_start,
+                       const FitOptions& options, std::size_t stride, int& iterations,
+                       const std::vector<Eigen::Vector3d>* latent = nullptr)
+{
+  ProfilePoint p;
+  p.mu = mu;
+  EstimatorSettings s = base;
+  s.friction = mu;
+  s.bristle_stiffness = k_start;
+  const Parameters params(s, { FitParameter::BristleStiffness });
+  Solution sol = solve(messages, params, options, { 0.0 }, latent, stride, iterations);
+  if (!sol.summary.IsSolutionUsable())
+    return p;
+  p.usable = true;
+  p.cost = sol.summary.final_cost;
+  p.k = k_start * std::exp(sol.x[0]);
+  const EstimatorSettings at = params.at(sol.x.data());
+  Eigen::MatrixXd info = Eigen::MatrixXd::Zero(1, 1);
+  double chi2 = 0.0;
+  int used = 0;
+  for (std::size_t i = 0; i < messages.size(); i += stride)
+  {
+    if (!addInformation(params, messages[i], sol.x.data(), sol.latent[i], info, chi2))
+      continue;
+    ++used;
+    double sliding = 0.0;
+    brushForce(at, messages[i], sol.latent[i].data(), &sliding);
+    p.sliding = std::max(p.sliding, sliding);
+  }
+  p.reduced_chi2 = chi2 / std::max(1, 2 * used - 1);
+  p.latent = std::move(sol.latent);
+  p.sd = p.k * std::sqrt(covarianceOf(info, p.reduced_chi2)(0, 0));
+  return p;
+}
 
 // Why message i stays out of the fit; Rejection::Count where it enters.
 Rejection rejectionOf(const CalibrationSample& s, const Prediction& p, std::size_t i)
@@ -262,6 +436,171 @@ Prediction predictForces(const std::vector<CalibrationSample>& samples, const Es
   }
   return p;
 }
+
+namespace
+{
+// Where the run gives friction only a bound, the stiffness depends on the friction it is fitted with (the patch's
+// partial sliding bends the force-slip curve the more, the lower mu), and a stiffness fitted at one held mu misses the
+// truth by many of its standard deviations where that mu is off. The profile of the fit's cost over mu >= the bound
+// tells which mu the forces' shape allows: a likelihood-ratio set, twice the cost within 3.84 (chi-square, one degree,
+// 95 %) times the reduced chi-square of its minimum. The stiffness's interval spans its fits over that set; the
+// settings hold mu at the file's value or the nearest the data allow, with the stiffness fitted at it.
+FitResult fitWithFrictionBounded(const std::vector<CalibrationSample>& samples, const EstimatorSettings& settings,
+                                 const FitOptions& options, const std::vector<Message>& messages,
+                                 const EstimatorSettings& base, const EstimatorSettings& result, const FitResult& free)
+{
+  constexpr double kMuMax = kFrictionMax;
+  constexpr double kChi2One95 = 3.841;  // chi-square with one degree of freedom, 95 % quantile
+  const FittedValue& mu = free.values[static_cast<int>(FitParameter::Friction)];
+  const double bound = mu.lower_bound;
+  int iterations = free.iterations;
+
+  // The profile over a subset of a long run's messages (as the first solve: fewer messages, a wider set): at the free
+  // fit's mu (in the set: its cost is the lowest), at the bound and at friction's largest value, then halved (in log
+  // mu) across the set's edges. The cost is taken to have one minimum over mu (the set an interval), the stiffness
+  // to change monotonically between neighbouring points (its fits decrease with mu: the less the patch slides, the
+  // less stiffness the same forces need).
+  const std::size_t stride = std::max<std::size_t>(1, messages.size() / kSubsetMessages);
+  const double threshold_factor = 0.5 * kChi2One95;
+  std::vector<ProfilePoint> profile;  // in increasing mu
+  std::size_t best = 0;
+  const auto findBest = [&]() {
+    best = 0;
+    for (std::size_t j = 1; j < profile.size(); ++j)
+      if (profile[j].usable && (!profile[best].usable || profile[j].cost < profile[best].cost))
+        best = j;
+  };
+  const auto inSet = [&](const ProfilePoint& p) {
+    return p.usable && p.cost <= profile[best].cost + threshold_factor * std::max(1.0, profile[best].reduced_chi2);
+  };
+  const auto at = [&](double m, const ProfilePoint* near) {
+    return profileAt(messages, base, m, near && near->usable ? near->k : result.bristle_stiffness, options, stride,
+                     iterations, near && near->usable ? &near->latent : nullptr);
+  };
+  const double mu_free = std::min(kMuMax, std::max(bound, result.friction));
+  profile.push_back(at(mu_free, nullptr));
+  if (bound < mu_free)
+    profile.insert(profile.begin(), at(bound, &profile.front()));
+  if (mu_free < kMuMax)
+    profile.push_back(at(kMuMax, &profile[profile.size() - 1]));
+  findBest();
+  FitOptions again = options;
+  again.fit[static_cast<int>(FitParameter::Friction)] = false;
+  EstimatorSettings held = settings;
+  held.friction = std::max(settings.friction, bound);
+  if (!profile[best].usable)
+  {
+    FitResult second = fitContact(samples, held, again);
+    FittedValue& k = second.values[static_cast<int>(FitParameter::BristleStiffness)];
+    k.determined = false;
+    k.note = "fitted with mu held at " + std::to_string(held.friction) + ", which the data give only as a bound";
+    FittedValue& m = second.values[static_cast<int>(FitParameter::Friction)];
+    m = mu;
+    m.value = held.friction;
+    m.sd = 0.0;
+    m.low = bound;
+    m.high = std::numeric_limits<double>::infinity();
+    k.low = 0.0;
+    k.high = std::numeric_limits<double>::infinity();
+    second.settings.friction = held.friction;
+    second.iterations += iterations;
+    return second;
+  }
+  // Between points the set's edge, and the stiffness with it, may lie anywhere: halve each step across the edge until
+  // the stiffness changes by less than kStepInSd of its sd across it; past kMaxProfile points the step's far end is
+  // taken in whole (wider, not narrower).
+  constexpr double kStepInSd = 0.5;
+  constexpr std::size_t kMaxProfile = 40;
+  std::vector<std::pair<double, double>> coarse;  // steps left unresolved: their ends' stiffness both count
+  for (bool refined = true; refined;)
+  {
+    refined = false;
+    for (std::size_t i = 0; i + 1 < profile.size(); ++i)
+    {
+      const ProfilePoint &p = profile[i], &q = profile[i + 1];
+      if (inSet(p) == inSet(q) || !p.usable || !q.usable ||
+          std::abs(p.k - q.k) <= kStepInSd * std::min(p.sd, q.sd) || q.mu <= p.mu * (1.0 + 1e-6))
+        continue;
+      if (profile.size() >= kMaxProfile)
+      {
+        coarse.emplace_back(p.k, q.k);
+        continue;
+      }
+      ProfilePoint mid = at(std::sqrt(p.mu * q.mu), inSet(p) ? &p : &q);
+      profile.insert(profile.begin() + static_cast<std::ptrdiff_t>(i) + 1, std::move(mid));
+      findBest();
+      refined = true;
+      break;
+    }
+  }
+  // the set reaches friction's largest value: any mu above its lower end fits
+  const bool open = profile.back().mu >= kMuMax && inSet(profile.back());
+  double mu_lo = std::numeric_limits<double>::infinity(), mu_hi = 0.0;
+  for (const ProfilePoint& p : profile)
+    if (inSet(p))
+    {
+      mu_lo = std::min(mu_lo, p.mu);
+      mu_hi = std::max(mu_hi, p.mu);
+    }
+  // mu for the node: the file's (or the bound), moved to the nearest the forces allow
+  held.friction = std::max(held.friction, mu_lo);
+  if (!open)
+    held.friction = std::min(held.friction, mu_hi);
+  std::size_t nearest = best;
+  for (std::size_t j = 0; j < profile.size(); ++j)
+    if (profile[j].usable &&
+        std::abs(std::log(profile[j].mu / held.friction)) < std::abs(std::log(profile[nearest].mu / held.friction)))
+      nearest = j;
+  const ProfilePoint h = profile[nearest].mu == held.friction ? profile[nearest] : at(held.friction, &profile[nearest]);
+  // the stiffness with mu held, every message (the profile's value there a start close to the answer)
+  held.bristle_stiffness = h.usable ? h.k : profile[nearest].k;
+  FitResult second = fitContact(samples, held, again);
+  second.iterations += iterations;
+  FittedValue& k = second.values[static_cast<int>(FitParameter::BristleStiffness)];
+  k.start = settings.bristle_stiffness;
+  // k's interval spans its fits over the set: the subset's, carried to the whole run by the ratios of the whole run's
+  // fit at the held mu to the subset's there (the value's, and the sd's: a subset of n / stride messages has one
+  // about sqrt(stride) wider), so that no further solve over every message is needed
+  const double shift = h.usable ? k.value / h.k : 1.0;
+  const double narrow = h.usable && std::isfinite(h.sd) && h.sd > 0.0 ? std::min(1.0, k.sd / h.sd) : 1.0;
+  double k_lo = k.low, k_hi = k.high;
+  for (const ProfilePoint& p : profile)
+    if (inSet(p))
+    {
+      const double sd = std::isfinite(p.sd) ? p.sd * narrow * shift : std::numeric_limits<double>::infinity();
+      k_lo = std::min(k_lo, p.k * shift - kInterval95 * sd);
+      k_hi = std::max(k_hi, p.k * shift + kInterval95 * sd);
+    }
+  for (const auto& step : coarse)
+  {
+    k_lo = std::min({ k_lo, step.first * shift, step.second * shift });
+    k_hi = std::max({ k_hi, step.first * shift, step.second * shift });
+  }
+  k.low = std::max(0.0, k_lo);
+  k.high = k_hi;
+  const std::string range = open ? "mu >= " + formatValue(mu_lo) : "mu from " + formatValue(mu_lo) + " to " +
+                                                                         formatValue(mu_hi);
+  if (k.determined && 0.5 * (k.high - k.low) > kInterval95 * options.determined_sd * k.value)
+  {
+    k.determined = false;
+    k.note = "it depends on mu, which the run gives only as a bound: k from " + formatValue(k.low) + " to " +
+             formatValue(k.high) + " over " + range + " (what the forces allow)";
+    second.settings.bristle_stiffness = settings.bristle_stiffness;
+  }
+  else if (k.determined)
+    k.note = "over " + range + " (what the forces allow; mu only a bound)";
+  FittedValue& m = second.values[static_cast<int>(FitParameter::Friction)];
+  m = mu;
+  m.value = held.friction;
+  m.sd = 0.0;
+  m.low = bound;
+  m.high = std::numeric_limits<double>::infinity();
+  m.note = mu.note + "; the forces' shape allows " + range + "; held at " + formatValue(held.friction) +
+           " for the others";
+  second.settings.friction = held.friction;  // the file's, or the nearest value the run allows
+  return second;
+}
+}  // namespace
 
 FitResult fitContact(const std::vector<CalibrationSample>& samples, const EstimatorSettings& settings,
                      const FitOptions& options)
@@ -355,76 +694,43 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
 
   const Parameters params(base, fitted);
   const int n = params.size();
-  std::vector<double> best(n, 0.0);
-  std::vector<Eigen::Vector3d> best_latent;
+  Solution best;
+  best.x.assign(n, 0.0);
   double best_cost = std::numeric_limits<double>::infinity();
-  ceres::Solver::Summary best_summary;
-  // starts: the file's values, and below and above them (exp(x) times the file's)
-  // One solve from x over every stride-th message (the latent slips of the others stay at the measured ones).
-  const auto solve = [&](std::vector<double>& x, std::vector<Eigen::Vector3d>& latent, std::size_t stride,
-                         ceres::Solver::Summary& summary) {
-    latent.resize(messages.size());
-    ceres::Problem::Options po;
-    po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
-    ceres::Problem problem(po);
-    for (std::size_t i = 0; i < messages.size(); ++i)
-    {
-      latent[i] = messages[i].slips;
-      if (i % stride != 0)
-        continue;
-      problem.AddResidualBlock(new ForceResidual(params, messages[i]), new ceres::HuberLoss(options.huber), x.data(),
-                               latent[i].data());
-      problem.AddResidualBlock(new SlipPrior(messages[i]), nullptr, latent[i].data());
-    }
-    ceres::Solver::Options so;
-    so.linear_solver_type = ceres::DENSE_SCHUR;  // the latent slips eliminated: a system of the parameters alone
-    so.max_num_iterations = options.max_iterations;
-    so.num_threads = std::max(1, options.threads);  // the residuals are independent: each builds its own model
-    so.logging_type = ceres::SILENT;
-    so.function_tolerance = 1e-6;  // of the cost: the models' own error keeps it from settling much finer
-    so.parameter_tolerance = 1e-8;
-    ceres::Solve(so, &problem, &summary);
-    out.iterations += static_cast<int>(summary.iterations.size());
-  };
-  // a long run first on a subset of its messages (what the parameters need comes from a few hundred), then whole
-  // from there: the whole run's solve then starts close and takes a few iterations
+  // starts: the file's values, and below and above them (exp(x) times the file's). A long run is solved first on a
+  // subset of its messages (what the parameters need comes from a few hundred), then whole from there: the whole
+  // run's solve then starts close and takes a few iterations
   const std::size_t stride = std::max<std::size_t>(1, messages.size() / kSubsetMessages);
   for (double factor : { 1.0, 1.0 / options.start_spread, options.start_spread })
   {
     if (n == 0)
       break;
     std::vector<double> x(n, std::log(factor));
-    std::vector<Eigen::Vector3d> latent;
-    ceres::Solver::Summary summary;
     if (stride > 1)
     {
-      solve(x, latent, stride, summary);
-      if (!summary.IsSolutionUsable())
-        x.assign(n, std::log(factor));
+      const Solution subset = solve(messages, params, options, x, nullptr, stride, out.iterations);
+      if (subset.summary.IsSolutionUsable())
+        x = subset.x;
     }
-    solve(x, latent, 1, summary);
-    if (summary.IsSolutionUsable() && summary.final_cost < best_cost)
+    Solution whole = solve(messages, params, options, x, nullptr, 1, out.iterations);
+    if (whole.summary.IsSolutionUsable() && whole.summary.final_cost < best_cost)
     {
-      best_cost = summary.final_cost;
-      best = x;
-      best_latent = latent;
-      best_summary = summary;
+      best_cost = whole.summary.final_cost;
+      best = std::move(whole);
     }
     // the file's values converged to a minimum no other start improves on: enough where the fit is well posed
-    if (factor == 1.0 && summary.termination_type == ceres::CONVERGENCE && n > 0)
+    if (factor == 1.0 && best.summary.termination_type == ceres::CONVERGENCE)
     {
       bool inside = true;
       for (int j = 0; j < n; ++j)
-        inside = inside && std::abs(x[j]) < std::log(options.start_spread);
+        inside = inside && std::abs(best.x[j]) < std::log(options.start_spread);
       if (inside)
         break;
     }
   }
 
-  // the parameters' covariance with the latent slips marginalised: the Schur complement of J^T J at the solution,
-  // sum over messages of A^T A - A^T B (B^T B + P^T P)^-1 B^T A, A and B the force residuals' derivatives in the
-  // parameters and the slips, P the prior's whitening
-  EstimatorSettings result = params.at(best.data());
+  // the parameters' covariance with the latent slips marginalised, and what the used messages covered
+  EstimatorSettings result = params.at(best.x.data());
   Eigen::MatrixXd info = Eigen::MatrixXd::Zero(n, n);
   double chi2 = 0.0;
   int sliding_samples = 0;
@@ -436,26 +742,9 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
   for (std::size_t i = 0; i < messages.size(); ++i)
   {
     const Message& m = messages[i];
-    ForceResidual f(params, m);
-    const double* xs[2] = { best.data(), best_latent.empty() ? m.slips.data() : best_latent[i].data() };
-    double r[2];
-    std::vector<double> A(2 * std::max(n, 1), 0.0);
-    double B[6];
-    double* jac[2] = { n > 0 ? A.data() : nullptr, B };
-    if (!f.Evaluate(xs, r, jac))
+    const Eigen::Vector3d& latent = best.latent.empty() ? m.slips : best.latent[i];
+    if (!addInformation(params, m, best.x.data(), latent, info, chi2, &out.residuals[static_cast<std::size_t>(m.index)]))
       continue;
-    // the force's residuals and the latent slips' (the latter take up what the slips' noise explains)
-    const Eigen::Vector3d rp = m.prior * (Eigen::Map<const Eigen::Vector3d>(xs[1]) - m.slips);
-    chi2 += r[0] * r[0] + r[1] * r[1] + rp.squaredNorm();
-    out.residuals[static_cast<std::size_t>(m.index)] = Eigen::Vector2d(r[0], r[1]);
-    if (n > 0)
-    {
-      const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> Am(A.data(), 2, n);
-      const Eigen::Map<const Eigen::Matrix<double, 2, 3, Eigen::RowMajor>> Bm(B);
-      const Eigen::Matrix3d BB = Bm.transpose() * Bm + m.prior.transpose() * m.prior;
-      const Eigen::MatrixXd BA = Bm.transpose() * Am;
-      info += Am.transpose() * Am - BA.transpose() * BB.ldlt().solve(BA);
-    }
     const std::size_t k = static_cast<std::size_t>(m.index);
     const double v = out.fitted.speed[k];
     out.speed_min = first_used ? v : std::min(out.speed_min, v);
@@ -489,18 +778,11 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
     }
     out.residual_autocorrelation[axis] = den > 0.0 ? num / den : 0.0;
   }
-  out.converged = n == 0 || best_summary.termination_type == ceres::CONVERGENCE;
+  out.converged = n == 0 || best.summary.termination_type == ceres::CONVERGENCE;
   // five residuals and three latent slips a message: two degrees of freedom each, less the parameters
   const int dof = std::max(1, 2 * out.used - n);
   out.reduced_chi2 = chi2 / dof;
-  const double inflate = std::max(1.0, out.reduced_chi2);  // the IMU noisier than it said: wider intervals
-  Eigen::MatrixXd cov = Eigen::MatrixXd::Constant(n, n, std::numeric_limits<double>::infinity());
-  if (n > 0)
-  {
-    const Eigen::LDLT<Eigen::MatrixXd> ldlt(info);
-    if (ldlt.info() == Eigen::Success && ldlt.isPositive() && info.diagonal().minCoeff() > 0.0)
-      cov = ldlt.solve(Eigen::MatrixXd::Identity(n, n)) * inflate;
-  }
+  const Eigen::MatrixXd cov = covarianceOf(info, out.reduced_chi2);
   out.correlation = Eigen::MatrixXd::Identity(n, n);
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b)
@@ -520,6 +802,8 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
       v.fitted = true;
       v.value = field(result, v.parameter);
       v.sd = v.value * std::sqrt(std::max(0.0, cov(k, k)));  // sd of the log times the value
+      v.low = v.value - kInterval95 * v.sd;
+      v.high = v.value + kInterval95 * v.sd;
       v.determined = out.converged && std::isfinite(v.sd) && v.sd <= options.determined_sd * v.value;
       if (!out.converged)
         v.note = "the fit did not converge";
@@ -543,26 +827,9 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
     if (v.fitted && v.determined)
       field(out.settings, v.parameter) = v.value;
 
-  // friction asked for but not determined by a run that never slides: the other parameters again with mu held at
-  // the file's value or the bound, whichever is larger (a free mu wanders where nothing pins it)
   const FittedValue& mu = out.values[static_cast<int>(FitParameter::Friction)];
   if (mu.fitted && mu.lower_bound > 0.0 && n > 1)
-  {
-    FitOptions again = options;
-    again.fit[static_cast<int>(FitParameter::Friction)] = false;
-    EstimatorSettings held = settings;
-    held.friction = std::max(settings.friction, mu.lower_bound);
-    FitResult second = fitContact(samples, held, again);
-    FittedValue& m = second.values[static_cast<int>(FitParameter::Friction)];
-    m.fitted = true;
-    m.start = settings.friction;
-    m.value = held.friction;
-    m.lower_bound = mu.lower_bound;
-    m.note = mu.note + "; held at " + std::to_string(held.friction) + " for the others";
-    second.settings.friction = held.friction;  // the file's, or the bound where the file's lies below what the run showed
-    second.iterations += out.iterations;
-    return second;
-  }
+    return fitWithFrictionBounded(samples, settings, options, messages, base, result, out);
   return out;
 }
 

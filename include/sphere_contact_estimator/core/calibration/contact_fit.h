@@ -89,6 +89,9 @@ struct FittedValue
   double start = 0.0;       ///< the parameter file's value
   double value = 0.0;       ///< fitted (or, not fitted, the file's)
   double sd = 0.0;          ///< standard deviation [the parameter's unit]
+  /// The 95 % interval: value -+ 1.96 sd, or, for the stiffness where friction is only a bound, the span of its fits
+  /// over every mu the forces allow (wider); for friction without sliding, [lower_bound, infinity).
+  double low = 0.0, high = 0.0;
   bool fitted = false;      ///< asked for
   bool determined = false;  ///< the data determine it (sd below FitOptions::determined_sd of it; mu: sliding seen)
   double lower_bound = 0.0; ///< mu without sliding: the bound the data give (0: none)
