@@ -6,9 +6,9 @@
 // with another pressure distribution than the fit assumes (the mismatch must be flagged), and robots drawn at random
 // over the envelope a user reaches (mass, k, mu, patch radius, IMU and odometry noise), fitted from the same file
 // values: there the file's mu may lie far from the truth and a run may give mu only as a bound, and every interval
-// and bound must still hold the truth.
+// and bound must still hold the truth. And runs fitted with the floor's damping too (from twice the truth, 1e5).
 //
-//   calibration_accuracy [--seeds 100] [--robots 100] > calibration.json      (progress on stderr)
+//   calibration_accuracy [--seeds 100] [--floors 100] [--robots 100] > calibration.json      (progress on stderr)
 
 // STL
 #include <chrono>
@@ -33,7 +33,7 @@ using nlohmann::json;
 namespace
 {
 json fitRun(const sce::EstimatorSettings& t, const sce::CalibrationNoise& noise, double duration_scale,
-            bool robot = false)
+            bool robot = false, bool floor = false)
 {
   std::vector<sce::ScenarioSegment> segments = sce::calibrationSegments();
   for (auto& s : segments)
@@ -46,11 +46,16 @@ json fitRun(const sce::EstimatorSettings& t, const sce::CalibrationNoise& noise,
   sce::EstimatorSettings file = robot ? t : sce::calibrationTruth();
   file.bristle_stiffness = 2e8;
   file.friction = 0.8;
+  if (floor)
+    file.surface_damping = 2.0 * t.surface_damping;  // else the floor as it is: the rolling resistance given
   const auto start = std::chrono::steady_clock::now();
-  const sce::FitResult r = sce::fitContact(samples, file);
+  sce::FitOptions options;
+  options.fit[static_cast<int>(sce::FitParameter::SurfaceDamping)] = floor;
+  const sce::FitResult r = sce::fitContact(samples, file, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const sce::FittedValue& k = r.values[static_cast<int>(sce::FitParameter::BristleStiffness)];
   const sce::FittedValue& mu = r.values[static_cast<int>(sce::FitParameter::Friction)];
+  const sce::FittedValue& gamma = r.values[static_cast<int>(sce::FitParameter::SurfaceDamping)];
   return json{ { "seed", noise.seed },
                { "duration", scenario.duration() },
                { "messages", r.samples },
@@ -65,6 +70,9 @@ json fitRun(const sce::EstimatorSettings& t, const sce::CalibrationNoise& noise,
                { "mu_low", mu.low },
                { "mu_bound", mu.lower_bound },
                { "mu_determined", mu.determined },
+               { "gamma", gamma.value },
+               { "gamma_sd", gamma.sd },
+               { "gamma_determined", gamma.determined },
                { "reduced_chi2", r.reduced_chi2 },
                { "autocorrelation", r.residual_autocorrelation.maxCoeff() },
                { "mismatch", r.mismatch() },
@@ -72,6 +80,7 @@ json fitRun(const sce::EstimatorSettings& t, const sce::CalibrationNoise& noise,
                { "seconds", seconds },
                { "truth", robot ? json{ { "k", t.bristle_stiffness },
                                          { "mu", t.friction },
+                                         { "gamma", t.surface_damping },
                                          { "mass", t.robot_mass },
                                          { "a", t.patch_radius },
                                          { "imu_noise", noise.imu },
@@ -82,14 +91,20 @@ json fitRun(const sce::EstimatorSettings& t, const sce::CalibrationNoise& noise,
 
 int main(int argc, char** argv)
 {
-  int seeds = 100, robots = 100;
+  int seeds = 100, robots = 100, floors = 100;
   for (int i = 1; i + 1 < argc; ++i)
     if (std::strcmp(argv[i], "--seeds") == 0)
       seeds = std::atoi(argv[i + 1]);
     else if (std::strcmp(argv[i], "--robots") == 0)
       robots = std::atoi(argv[i + 1]);
+    else if (std::strcmp(argv[i], "--floors") == 0)
+      floors = std::atoi(argv[i + 1]);
   const sce::EstimatorSettings t = sce::calibrationTruth();
-  json out{ { "truth", { { "k", t.bristle_stiffness }, { "mu", t.friction }, { "mass", t.robot_mass } } },
+  json out{ { "truth",
+              { { "k", t.bristle_stiffness },
+                { "mu", t.friction },
+                { "gamma", t.surface_damping },
+                { "mass", t.robot_mass } } },
             { "imu_noise", sce::CalibrationNoise{}.imu } };
   for (int s = 1; s <= seeds; ++s)
   {
@@ -116,8 +131,17 @@ int main(int argc, char** argv)
     noise.imu_bias.setZero();
     out["uniform_pressure"].push_back(fitRun(uniform, noise, 1.0));
   }
+  // the floor too (calibrate --fit bristle_stiffness,friction,surface_damping), from twice its damping
+  for (int s = 1; s <= floors; ++s)
+  {
+    sce::CalibrationNoise noise;
+    noise.seed = 4000 + static_cast<std::uint64_t>(s);
+    out["floor"].push_back(fitRun(t, noise, 1.0, false, true));
+    std::cerr << "\rcalibration_accuracy: floor " << s << " of " << floors << std::flush;
+  }
+  std::cerr << "\n";
   // robots at random over the envelope (seeded): a light or heavy robot, soft or stiff bristles, low or high friction,
-  // small or large patch, a quiet or noisy IMU and odometry
+  // small or large patch, a quiet or noisy IMU and odometry, a hard or soft floor
   std::mt19937_64 rng(777);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int i = 0; i < robots; ++i)
@@ -133,6 +157,7 @@ int main(int argc, char** argv)
     const double scale = 0.5 + 1.0 * u(rng);
     noise.velocity *= scale;
     noise.omega *= scale;
+    r.surface_damping = std::pow(10.0, 4.0 + 2.0 * u(rng));  // a hard floor to a soft one (tau 1e-4 to 1e-2 s)
     out["robots"].push_back(fitRun(r, noise, 1.0, true));
     std::cerr << "\rcalibration_accuracy: robot " << i + 1 << " of " << robots << std::flush;
   }

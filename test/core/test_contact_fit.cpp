@@ -58,9 +58,15 @@ TEST(ContactFit, RecoversTheParametersOfASyntheticRunWithinItsIntervals)
 {
   for (std::uint64_t seed : { 11u, 12u })
   {
-    const sce::FitResult r = sce::fitContact(run(halved(), seed), file());
+    // the floor too, from twice its damping (1e5)
+    sce::EstimatorSettings start = file();
+    start.surface_damping = 2e5;
+    sce::FitOptions all;
+    all.fit = { { true, true, true } };
+    const sce::FitResult r = sce::fitContact(run(halved(), seed), start, all);
     const sce::FittedValue& k = value(r, sce::FitParameter::BristleStiffness);
     const sce::FittedValue& mu = value(r, sce::FitParameter::Friction);
+    const sce::FittedValue& gamma = value(r, sce::FitParameter::SurfaceDamping);
     ASSERT_TRUE(k.determined && mu.determined) << k.note << " / " << mu.note;
     EXPECT_TRUE(r.converged);
     // within four standard deviations (beyond, 6e-5 of seeds where the sd is right: the intervals' coverage over 100
@@ -69,6 +75,14 @@ TEST(ContactFit, RecoversTheParametersOfASyntheticRunWithinItsIntervals)
     EXPECT_LT(std::abs(k.value / 1.5e8 - 1.0), 0.05) << seed;
     EXPECT_LT(std::abs(mu.value - 0.6), 4.0 * mu.sd) << mu.value << " +- " << mu.sd << ", seed " << seed;
     EXPECT_LT(std::abs(mu.value / 0.6 - 1.0), 0.02) << seed;
+    // the floor's damping (its relaxation time gamma/k_s, k_s held): from the rolling resistance's share of the
+    // longitudinal force at each speed; a value only where its sd is within 20 %
+    const double truth = sce::calibrationTruth().surface_damping;
+    EXPECT_TRUE(gamma.fitted);
+    if (gamma.determined)
+      EXPECT_LT(std::abs(gamma.value - truth), 4.0 * gamma.sd) << gamma.value << " +- " << gamma.sd << ", " << seed;
+    else
+      EXPECT_EQ(r.settings.surface_damping, 2e5) << "the file's value is kept where the data do not determine it";
     // the residuals are the noise the run was made with, no streaks
     EXPECT_GT(r.reduced_chi2, 0.8);
     EXPECT_LT(r.reduced_chi2, 1.25);

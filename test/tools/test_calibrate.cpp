@@ -64,16 +64,20 @@ protected:
 TEST_F(Calibrate, FitsARunAndTheNodeLoadsTheFile)
 {
   const Outcome r = runCommand(std::string(CALIBRATE_PATH) + " -i " + kDir + "/run.bag -p " + kParams +
-                               " --set robot_mass=3 -o " + kDir + "/fitted.yaml --report " + kDir + "/report");
+                               " --set robot_mass=3 --fit bristle_stiffness,friction,surface_damping -o " + kDir +
+                               "/fitted.yaml --report " + kDir + "/report");
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   for (const char* line : { "odometry messages in the fit", "not in the fit:", "bristle_stiffness", "friction",
-                            "reduced chi-square", "determined" })
+                            "surface_damping", "reduced chi-square", "determined" })
     EXPECT_NE(r.out.find(line), std::string::npos) << line << " missing in\n" << r.out;
   // the file loads as the node's parameters, with the fitted values near the truth and the robot's own kept
   sce::ContactEstimatorConfig c = sce::ContactEstimatorConfig::__getDefault__();
   ASSERT_NO_THROW(sce::applyParameterFile(c, kDir + "/fitted.yaml"));
   EXPECT_NEAR(c.bristle_stiffness / 1.5e8, 1.0, 0.05) << slurp(kDir + "/fitted.yaml");
   EXPECT_NEAR(c.friction / 0.6, 1.0, 0.02);
+  // the floor's damping (its relaxation time, the floor's stiffness held): the run's is the file's 1e5, within its
+  // interval where determined, else the file's value as it was
+  EXPECT_NEAR(c.surface_damping / 1e5, 1.0, 0.5) << slurp(kDir + "/fitted.yaml");
   EXPECT_EQ(c.robot_mass, 3.0);
   const std::string yaml = slurp(kDir + "/fitted.yaml");
   EXPECT_EQ(yaml.rfind("# Fitted by calibrate from 1 bag(s):\n", 0), 0u) << yaml.substr(0, 200);
@@ -118,4 +122,19 @@ TEST_F(Calibrate, AnImuAtAnotherRateIsInterpolatedToTheOdometry)
   sce::applyParameterFile(c, kDir + "/slow.yaml");
   EXPECT_NEAR(c.bristle_stiffness / 1.5e8, 1.0, 0.1);
   EXPECT_EQ(c.friction, 0.6) << "not fitted: as given";
+}
+
+TEST_F(Calibrate, AWrongRollingRadiusIsCalledOut)
+{
+  // the run's sphere is 0.1 m; a parameter file that says 0.1005 biases every slip by half a per cent, which the fit
+  // can only read as stiffness: the values come out wrong, and the summary and the file say the run is not the model's
+  const std::string tool = std::string(CALIBRATE_PATH) + " -i " + kDir + "/run.bag -p " + kParams +
+                           " --set robot_mass=3 --set friction=0.6 --fit bristle_stiffness";
+  const Outcome ok = runCommand(tool + " -o " + kDir + "/right.yaml");
+  ASSERT_EQ(ok.status, 0) << ok.out << ok.err;
+  EXPECT_EQ(ok.out.find("WARNING"), std::string::npos) << ok.out;
+  const Outcome r = runCommand(tool + " --set rolling_radius=0.1005 -o " + kDir + "/wrong_radius.yaml");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("WARNING: the reduced chi-square is"), std::string::npos) << r.out;
+  EXPECT_NE(slurp(kDir + "/wrong_radius.yaml").find("# WARNING: the reduced chi-square is"), std::string::npos);
 }

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 // Eigen
 #include <Eigen/Cholesky>
@@ -18,12 +19,14 @@
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
 #include "sphere_contact_estimator/core/estimator/estimate_covariance.h"
 #include "sphere_contact_estimator/core/estimator/paper_frame.h"
+#include "sphere_contact_estimator/core/rolling_resistance/cylinder_exact.h"
 
 namespace sphere_contact_estimator
 {
 namespace
 {
 constexpr int kParameters = static_cast<int>(FitParameter::Count);
+constexpr int kMaxFitted = kParameters;
 // differences in each latent slip over a fraction of its noise: wide enough that the models' own error (the accuracy
 // target of mu F_z) stays a small part of the difference
 constexpr double kSlipStep = 0.1;  // of the slip's standard deviation
@@ -32,6 +35,27 @@ constexpr double kInterval95 = 1.96;          // a 95 % interval's half-width in
 // the parameters' ranges in the fit: the brush's validity (BrushParameters), friction's in the parameter file
 constexpr double kStiffnessMin = 1e3, kStiffnessMax = 1e18;  // [N/m^3]
 constexpr double kFrictionMin = 1e-3, kFrictionMax = 100.0;
+// the floor's relaxation time tau = gamma/k_s [s]: a floor whose rolling resistance at 1 m/s would exceed a tenth of
+// the load on a 10-cm sphere (mu_roll = tau v, F_R = mu_roll F_N / R) is no floor a robot rolls on; a model that does
+// not fit (an IMU bias) would otherwise put its misfit into gamma without end
+constexpr double kTauMin = 1e-7, kTauMax = 1e-2;
+constexpr double kDampingStep = 1e-4;  // the log step of the rolling resistance's forward difference in gamma
+
+// The range of a fitted parameter.
+std::pair<double, double> rangeOf(FitParameter p, const EstimatorSettings& s)
+{
+  switch (p)
+  {
+    case FitParameter::BristleStiffness:
+      return { kStiffnessMin, kStiffnessMax };
+    case FitParameter::Friction:
+      return { kFrictionMin, kFrictionMax };
+    case FitParameter::SurfaceDamping:
+    case FitParameter::Count:
+      break;
+  }
+  return { kTauMin * s.surface_stiffness, kTauMax * s.surface_stiffness };
+}
 
 std::string formatValue(double v)
 {
@@ -42,11 +66,21 @@ std::string formatValue(double v)
 
 double& field(EstimatorSettings& s, FitParameter p)
 {
-  return p == FitParameter::BristleStiffness ? s.bristle_stiffness : s.friction;
+  switch (p)
+  {
+    case FitParameter::BristleStiffness:
+      return s.bristle_stiffness;
+    case FitParameter::Friction:
+      return s.friction;
+    case FitParameter::SurfaceDamping:
+    case FitParameter::Count:
+      break;
+  }
+  return s.surface_damping;
 }
 double field(const EstimatorSettings& s, FitParameter p)
 {
-  return p == FitParameter::BristleStiffness ? s.bristle_stiffness : s.friction;
+  return field(const_cast<EstimatorSettings&>(s), p);
 }
 
 // What the fit keeps of one message: the measured slips (paper frame, rolling along +x) and their covariance from the
@@ -76,6 +110,11 @@ public:
     return s;
   }
   FitParameter parameter(int j) const { return fitted_[j]; }
+  /// The floor's damping is fitted: the rolling resistance then comes from the trial parameters, not the message.
+  bool floorFitted() const
+  {
+    return std::find(fitted_.begin(), fitted_.end(), FitParameter::SurfaceDamping) != fitted_.end();
+  }
   double baseValue(int j) const { return field(base_, fitted_[j]); }
 
 private:
@@ -96,11 +135,18 @@ Eigen::Vector2d brushForce(const EstimatorSettings& s, const Message& m, const d
 }
 
 // The horizontal force on the robot in the ground frame: the brush force turned from the paper's contact frame, and
-// the rolling resistance against the rolling direction.
-Eigen::Vector2d groundForce(const Message& m, const Eigen::Vector2d& brush, bool with_rolling_resistance = true)
+// the rolling resistance F_R L against the rolling direction.
+Eigen::Vector2d groundForce(const Message& m, const Eigen::Vector2d& brush, double rolling_resistance)
 {
-  return contactToGround(m.heading, paper_frame::toRos(brush) -
-                                        Eigen::Vector2d(with_rolling_resistance ? m.rolling_resistance : 0.0, 0.0));
+  return contactToGround(m.heading, paper_frame::toRos(brush) - Eigen::Vector2d(rolling_resistance, 0.0));
+}
+
+// The rolling resistance F_R L at the message's speed with the settings' floor (Poeschel et al., eq. 18 solved
+// exactly: the node's table interpolates this solution).
+double rollingResistance(const EstimatorSettings& s, const Message& m)
+{
+  const CylinderExact cylinder(s.cylinderParameters());
+  return cylinder.solve(m.speed).F_R * s.effective_length;
 }
 
 // The measured force against the model's at the message's latent (true) slips, in units of the force's noise.
@@ -135,7 +181,8 @@ private:
   {
     const EstimatorSettings s = p_.at(x[0]);
     const Eigen::Vector2d B = brushForce(s, m_, x[1]);
-    const Eigen::Vector2d F = groundForce(m_, B);
+    const double rr = p_.floorFitted() ? rollingResistance(s, m_) : m_.rolling_resistance;
+    const Eigen::Vector2d F = groundForce(m_, B, rr);
     residuals[0] = (m_.force.x() - F.x()) / m_.force_sd;
     residuals[1] = (m_.force.y() - F.y()) / m_.force_sd;
     if (!(std::isfinite(residuals[0]) && std::isfinite(residuals[1])))
@@ -158,7 +205,7 @@ private:
     if (jacobians[1])
       for (int j = 0; j < 3; ++j)
       {
-        const Eigen::Vector2d d = groundForce(m_, dB.col(j), false) * inv;
+        const Eigen::Vector2d d = groundForce(m_, dB.col(j), 0.0) * inv;
         jacobians[1][j] = d.x();
         jacobians[1][3 + j] = d.y();
       }
@@ -168,8 +215,22 @@ private:
       const Eigen::Vector2d D = dB * Eigen::Vector3d(z[0], z[1], z[2]);
       for (int j = 0; j < n; ++j)
       {
-        const Eigen::Vector2d dBj = p_.parameter(j) == FitParameter::BristleStiffness ? D : Eigen::Vector2d(B - D);
-        const Eigen::Vector2d d = groundForce(m_, dBj, false) * inv;
+        Eigen::Vector2d d;
+        if (p_.parameter(j) == FitParameter::SurfaceDamping)
+        {
+          // the floor moves the rolling resistance only: a forward difference in log gamma (the exact solution costs
+          // a few hundred ns)
+          double xs[kMaxFitted];
+          std::copy(x[0], x[0] + n, xs);
+          xs[j] += kDampingStep;
+          const double up = rollingResistance(p_.at(xs), m_);
+          d = groundForce(m_, Eigen::Vector2d::Zero(), (up - rr) / kDampingStep) * inv;
+        }
+        else
+        {
+          const bool k = p_.parameter(j) == FitParameter::BristleStiffness;
+          d = groundForce(m_, k ? D : Eigen::Vector2d(B - D), 0.0) * inv;
+        }
         jacobians[0][j] = d.x();
         jacobians[0][n + j] = d.y();
       }
@@ -236,10 +297,10 @@ Solution solve(const std::vector<Message>& messages, const Parameters& params, c
   for (int j = 0; j < params.size() && problem.NumResidualBlocks() > 0; ++j)
   {
     // the parameters within their ranges (x is the log of the ratio to the settings' value)
-    const bool k = params.parameter(j) == FitParameter::BristleStiffness;
+    const auto range = rangeOf(params.parameter(j), params.at(out.x.data()));
     const double base = params.baseValue(j);
-    problem.SetParameterLowerBound(out.x.data(), j, std::log((k ? kStiffnessMin : kFrictionMin) / base));
-    problem.SetParameterUpperBound(out.x.data(), j, std::log((k ? kStiffnessMax : kFrictionMax) / base));
+    problem.SetParameterLowerBound(out.x.data(), j, std::log(range.first / base));
+    problem.SetParameterUpperBound(out.x.data(), j, std::log(range.second / base));
   }
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::DENSE_SCHUR;  // the latent slips eliminated: a system of the parameters alone
@@ -303,6 +364,7 @@ Eigen::MatrixXd covarianceOf(const Eigen::MatrixXd& info, double reduced_chi2)
 struct ProfilePoint
 {
   double mu = 0.0, k = 0.0;
+  double damping = 0.0;  // the floor's, fitted with k where asked, else the start's
   double sd = std::numeric_limits<double>::infinity();  // of k, widened by the reduced chi-square
   double cost = std::numeric_limits<double>::infinity();  // Ceres' (half the robust sum of squares)
   double reduced_chi2 = 0.0;
@@ -311,24 +373,30 @@ struct ProfilePoint
   std::vector<Eigen::Vector3d> latent;  // the messages' latent slips at the fit (a neighbouring point's start)
 };
 
-ProfilePoint profileAt(const std::vector<Message>& messages, const EstimatorSettings& base, double mu, double k_start,
+// start: the settings with the other parameters' starting values (k first, the floor's damping where with_floor).
+ProfilePoint profileAt(const std::vector<Message>& messages, const EstimatorSettings& start, double mu, bool with_floor,
                        const FitOptions& options, std::size_t stride, int& iterations,
                        const std::vector<Eigen::Vector3d>* latent = nullptr)
 {
   ProfilePoint p;
   p.mu = mu;
-  EstimatorSettings s = base;
+  EstimatorSettings s = start;
   s.friction = mu;
-  s.bristle_stiffness = k_start;
-  const Parameters params(s, { FitParameter::BristleStiffness });
-  Solution sol = solve(messages, params, options, { 0.0 }, latent, stride, iterations);
+  const double k_start = s.bristle_stiffness;
+  std::vector<FitParameter> others{ FitParameter::BristleStiffness };
+  if (with_floor)
+    others.push_back(FitParameter::SurfaceDamping);
+  const Parameters params(s, others);
+  const int n = params.size();
+  Solution sol = solve(messages, params, options, std::vector<double>(n, 0.0), latent, stride, iterations);
   if (!sol.summary.IsSolutionUsable())
     return p;
   p.usable = true;
   p.cost = sol.summary.final_cost;
   p.k = k_start * std::exp(sol.x[0]);
   const EstimatorSettings at = params.at(sol.x.data());
-  Eigen::MatrixXd info = Eigen::MatrixXd::Zero(1, 1);
+  p.damping = at.surface_damping;
+  Eigen::MatrixXd info = Eigen::MatrixXd::Zero(n, n);
   double chi2 = 0.0;
   int used = 0;
   for (std::size_t i = 0; i < messages.size(); i += stride)
@@ -340,7 +408,7 @@ ProfilePoint profileAt(const std::vector<Message>& messages, const EstimatorSett
     brushForce(at, messages[i], sol.latent[i].data(), &sliding);
     p.sliding = std::max(p.sliding, sliding);
   }
-  p.reduced_chi2 = chi2 / std::max(1, 2 * used - 1);
+  p.reduced_chi2 = chi2 / std::max(1, 2 * used - n);
   p.latent = std::move(sol.latent);
   p.sd = p.k * std::sqrt(covarianceOf(info, p.reduced_chi2)(0, 0));
   return p;
@@ -385,9 +453,25 @@ const char* toString(Rejection r)
   return "?";
 }
 
+double parameterValue(const EstimatorSettings& s, FitParameter p)
+{
+  return field(s, p);
+}
+
 const char* parameterName(FitParameter p)
 {
-  return p == FitParameter::BristleStiffness ? "bristle_stiffness" : "friction";
+  switch (p)
+  {
+    case FitParameter::BristleStiffness:
+      return "bristle_stiffness";
+    case FitParameter::Friction:
+      return "friction";
+    case FitParameter::SurfaceDamping:
+      return "surface_damping";
+    case FitParameter::Count:
+      break;
+  }
+  return "?";
 }
 
 bool FitResult::mismatch() const
@@ -452,6 +536,7 @@ FitResult fitWithFrictionBounded(const std::vector<CalibrationSample>& samples, 
   constexpr double kMuMax = kFrictionMax;
   constexpr double kChi2One95 = 3.841;  // chi-square with one degree of freedom, 95 % quantile
   const FittedValue& mu = free.values[static_cast<int>(FitParameter::Friction)];
+  const bool with_floor = free.values[static_cast<int>(FitParameter::SurfaceDamping)].fitted;
   const double bound = mu.lower_bound;
   int iterations = free.iterations;
 
@@ -474,7 +559,10 @@ FitResult fitWithFrictionBounded(const std::vector<CalibrationSample>& samples, 
     return p.usable && p.cost <= profile[best].cost + threshold_factor * std::max(1.0, profile[best].reduced_chi2);
   };
   const auto at = [&](double m, const ProfilePoint* near) {
-    return profileAt(messages, base, m, near && near->usable ? near->k : result.bristle_stiffness, options, stride,
+    EstimatorSettings start = base;
+    start.bristle_stiffness = near && near->usable ? near->k : result.bristle_stiffness;
+    start.surface_damping = near && near->usable ? near->damping : result.surface_damping;
+    return profileAt(messages, start, m, with_floor, options, stride,
                      iterations, near && near->usable ? &near->latent : nullptr);
   };
   const double mu_free = std::min(kMuMax, std::max(bound, result.friction));
@@ -558,6 +646,8 @@ FitResult fitWithFrictionBounded(const std::vector<CalibrationSample>& samples, 
   second.iterations += iterations;
   FittedValue& k = second.values[static_cast<int>(FitParameter::BristleStiffness)];
   k.start = settings.bristle_stiffness;
+  if (!k.determined)
+    second.settings.bristle_stiffness = settings.bristle_stiffness;  // the file's, not the profile's start
   // k's interval spans its fits over the set: the subset's, carried to the whole run by the ratios of the whole run's
   // fit at the held mu to the subset's there (the value's, and the sd's: a subset of n / stride messages has one
   // about sqrt(stride) wider), so that no further solve over every message is needed
@@ -613,7 +703,8 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
   base.propagate_covariance = true;  // (for the flag of a parked robot, kMotionWithinNoise)
   std::vector<FitParameter> fitted;
   for (int j = 0; j < kParameters; ++j)
-    if (options.fit[j])
+    if (options.fit[j] && !(static_cast<FitParameter>(j) == FitParameter::SurfaceDamping &&
+                            settings.rolling_resistance_model == CylinderModelKind::Off))
       fitted.push_back(static_cast<FitParameter>(j));
 
   // which messages enter, and what the fit keeps of them: the flags and the frame do not depend on the parameters
@@ -743,7 +834,8 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
   {
     const Message& m = messages[i];
     const Eigen::Vector3d& latent = best.latent.empty() ? m.slips : best.latent[i];
-    if (!addInformation(params, m, best.x.data(), latent, info, chi2, &out.residuals[static_cast<std::size_t>(m.index)]))
+    Eigen::Vector2d& residual = out.residuals[static_cast<std::size_t>(m.index)];
+    if (!addInformation(params, m, best.x.data(), latent, info, chi2, &residual))
       continue;
     const std::size_t k = static_cast<std::size_t>(m.index);
     const double v = out.fitted.speed[k];
@@ -784,6 +876,7 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
   out.reduced_chi2 = chi2 / dof;
   const Eigen::MatrixXd cov = covarianceOf(info, out.reduced_chi2);
   out.correlation = Eigen::MatrixXd::Identity(n, n);
+  out.correlated = fitted;
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b)
       if (a != b && std::isfinite(cov(a, b)) && cov(a, a) > 0.0 && cov(b, b) > 0.0)
@@ -818,7 +911,20 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
         v.note = "the run never slides (at most " + std::to_string(static_cast<int>(100 * out.sliding_max + 0.5)) +
                  " % of the patch): mu is only bounded below";
       }
+      const auto range = rangeOf(v.parameter, result);
+      if (v.value <= range.first * (1.0 + 1e-6) || v.value >= range.second * (1.0 - 1e-6))
+      {
+        // pressed against its range: the data push it beyond what the parameter can be (a run that is not the model's)
+        v.determined = false;
+        v.note = "at the edge of its range [" + formatValue(range.first) + ", " + formatValue(range.second) +
+                 "]: the data push it beyond (a run that is not the model's?)";
+      }
+      if (v.parameter == FitParameter::SurfaceDamping && v.determined)
+        v.note = "with surface_stiffness held: the floor's relaxation time gamma/k_s = " +
+                 formatValue(v.value / base.surface_stiffness) + " s";
     }
+    else if (v.parameter == FitParameter::SurfaceDamping && options.fit[j])
+      v.note = "not fitted: rolling_resistance_model is off";
     out.values.push_back(v);
   }
   // the settings: the file's, with the determined values
