@@ -50,8 +50,9 @@ log "bag_analyze's replay path on a generated bag of 1.1e5 odometry messages, on
 taskset -c 0 "$BIN/replay_benchmark" > "$OUT/replay.json"
 taskset -c 0 "$BIN/replay_benchmark" --tf --models off linear steady > "$OUT/replay_tf.json"
 taskset -c 0 "$BIN/replay_benchmark" --writers > "$OUT/writers.json"
-log "the calibration over 100 seeds, a 60-s run's time, runs that are not the model's (about 15 minutes)"
-"$BIN/calibration_accuracy" --seeds 100 > "$OUT/calibration.json"
+log "the calibration over 100 seeds, a 60-s run's time, runs that are not the model's, 100 runs fitting the floor too,"
+log "100 random robots (about 50 minutes)"
+"$BIN/calibration_accuracy" --seeds 100 --floors 100 --robots 100 > "$OUT/calibration.json"
 /usr/bin/python3 "$REPO/scripts/benchmark_report.py" --bench "$OUT/bench.json" --accuracy "$OUT/accuracy.json" \
   --node "$OUT/node.json" --bag "$OUT/bag.json" --default-brush-model "$(default_brush_model)" \
   --replay "$OUT/replay.json" "$OUT/replay_tf.json" "$OUT/writers.json" --streams "$OUT/streams.json" --replay-profile "$REPO/bench/replay_profile.md" \

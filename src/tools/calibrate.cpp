@@ -101,7 +101,8 @@ std::string valueComment(const sce::FittedValue& v)
     return "fitted: sd " + format("%.3g", v.sd) + ", 95 % [" + format("%.4g", v.low) + ", " + format("%.4g", v.high) +
            "], start " + format("%.4g", v.start) + (v.note.empty() ? "" : "; " + v.note);
   if (v.lower_bound > 0.0)
-    return "NOT determined by the data (" + v.note + "): >= " + format("%.3g", v.lower_bound) + "; this value kept";
+    return "NOT determined by the data (" + v.note + "): >= " + format("%.3g", v.lower_bound) +
+           "; this value is the one the others were fitted with";
   return "NOT determined by the data (" + v.note + ", sd " + format("%.3g", v.sd) + "); the parameter file's value kept";
 }
 
@@ -197,6 +198,7 @@ int main(int argc, char** argv)
     if (bags.empty())
       throw std::runtime_error("no bag among the inputs");
     const sce::CalibrationRecording rec = sce::readCalibrationBags(bags, read);
+    const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     const sce::EstimatorSettings settings = sce::settingsFromConfig(read.config);
     sce::FitOptions options;
     options.threads = jobs;
@@ -287,7 +289,8 @@ int main(int argc, char** argv)
         std::printf("  with a = %.4g m held: k a^3 = %.4g N, 95 %% [%.4g, %.4g] (slip stiffness C_sigma = 8/3 k a^3 = "
                     "%.4g N, any pressure)\n", a, k.value * a3, k.low * a3, k.high * a3, 8.0 / 3.0 * k.value * a3);
     }
-    std::printf("  fit: %s, %.1f s\n", quality(r).c_str(), seconds);
+    std::printf("  fit: %s, %.1f s (%.1f s reading the bags, %d thread(s) fitting)\n", quality(r).c_str(), seconds,
+                read_seconds, jobs);
     for (const std::string& w : mismatches(r))
       std::printf("  WARNING: %s\n", w.c_str());
     std::printf("  parameter file: %s%s\n", output.c_str(), report.empty() ? "" : ("; report: " + report).c_str());

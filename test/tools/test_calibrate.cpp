@@ -18,7 +18,10 @@
 #include <sensor_msgs/Imu.h>
 
 // Package
+#include "sphere_contact_estimator/core/calibration/contact_fit.h"
+#include "sphere_contact_estimator/ros/calibration_recording.h"
 #include "sphere_contact_estimator/ros/config_file.h"
+#include "sphere_contact_estimator/ros/config_settings.h"
 #include "../command_outcome.h"
 
 namespace sce = sphere_contact_estimator;
@@ -83,6 +86,37 @@ TEST_F(Calibrate, FitsARunAndTheNodeLoadsTheFile)
   EXPECT_EQ(yaml.rfind("# Fitted by calibrate from 1 bag(s):\n", 0), 0u) << yaml.substr(0, 200);
   for (const char* part : { "speeds ", "slips up to", "reduced chi-square", "bristle_stiffness: ", "# fitted: sd " })
     EXPECT_NE(yaml.find(part), std::string::npos) << part;
+  // the round trip: the node's estimator with the loaded file predicts the bag's forces (the IMU's) as well as the
+  // fitted model does, and better than the file the fit started from (k 2e8, mu 0.8 and the floor as given)
+  {
+    sce::CalibrationReadOptions read;
+    read.config = c;
+    const sce::CalibrationRecording rec = sce::readCalibrationBags({ kDir + "/run.bag" }, read);
+    sce::ContactEstimatorConfig start = sce::ContactEstimatorConfig::__getDefault__();
+    sce::applyParameterFile(start, kParams);
+    start.robot_mass = 3.0;
+    const auto rms = [&](const sce::ContactEstimatorConfig& config) {
+      const sce::Prediction p = sce::predictForces(rec.samples, sce::settingsFromConfig(config));
+      double sum = 0.0;
+      int n = 0;
+      for (std::size_t i = 0; i < rec.samples.size(); ++i)
+        if (p.answered[i] && rec.samples[i].has_force && p.sliding[i] > 0.5)  // where the slips' noise matters least
+        {
+          sum += (rec.samples[i].force - p.force[i]).squaredNorm();
+          ++n;
+        }
+      EXPECT_GT(n, 50);
+      return std::sqrt(sum / std::max(n, 1));
+    };
+    sce::ContactEstimatorConfig truth = start;
+    truth.bristle_stiffness = 1.5e8;
+    truth.friction = 0.6;
+    // (the node predicts from the measured, noisy slips and lags in the speed's ramps, so even the truth's prediction
+    // is off by more than the IMU's noise: the fitted file's is to match it)
+    const double fitted = rms(c), before = rms(start), best = rms(truth);
+    EXPECT_LT(fitted, 0.5 * before) << fitted << " N against " << before << " N";
+    EXPECT_LT(fitted, 1.05 * best) << fitted << " N against the truth's " << best << " N";
+  }
   // the report: every message in the CSV, and its figures
   const std::string csv = slurp(kDir + "/report/calibration.csv");
   EXPECT_NE(csv.find("\nt,used,rejection,speed,"), std::string::npos);

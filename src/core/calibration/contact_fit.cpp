@@ -565,10 +565,11 @@ FitResult fitWithFrictionBounded(const std::vector<CalibrationSample>& samples, 
     return profileAt(messages, start, m, with_floor, options, stride,
                      iterations, near && near->usable ? &near->latent : nullptr);
   };
-  const double mu_free = std::min(kMuMax, std::max(bound, result.friction));
+  const double mu_low = std::min(kMuMax, std::max(bound, kFrictionMin));  // friction's range: 1e-3 to 100
+  const double mu_free = std::min(kMuMax, std::max(mu_low, result.friction));
   profile.push_back(at(mu_free, nullptr));
-  if (bound < mu_free)
-    profile.insert(profile.begin(), at(bound, &profile.front()));
+  if (mu_low < mu_free)
+    profile.insert(profile.begin(), at(mu_low, &profile.front()));
   if (mu_free < kMuMax)
     profile.push_back(at(kMuMax, &profile[profile.size() - 1]));
   findBest();
