@@ -229,10 +229,14 @@ int main(int argc, char** argv)
         out << "# " << line << "\n";
       out << "# Load it as the node's parameter file: roslaunch sphere_contact_estimator contact_estimator.launch "
              "config:=" << std::filesystem::absolute(output).string() << "\n\n";
+      const bool floor = r.values[static_cast<int>(sce::FitParameter::SurfaceDamping)].fitted;
       out << sce::parameterFileText(fitted, [&](const std::string& name) {
         for (const sce::FittedValue& v : r.values)
           if (name == sce::parameterName(v.parameter))
             return valueComment(v);
+        if (floor && (name == "surface_stiffness" || name == "surface_density"))
+          return std::string("NOT determined (held): at the run's speeds the data determine only surface_damping / "
+                             "surface_stiffness");
         return std::string();
       });
     }
@@ -281,6 +285,9 @@ int main(int argc, char** argv)
       if (!pairs.empty())
         std::printf("  correlations: %s\n", pairs.c_str());
     }
+    if (r.values[static_cast<int>(sce::FitParameter::SurfaceDamping)].fitted)
+      std::printf("  surface_stiffness and surface_density: NOT determined (held): at the run's speeds the data "
+                  "determine only surface_damping / surface_stiffness\n");
     {
       // what the data determine is k a^3 (the slip stiffness), with a held at the parameter file's
       const sce::FittedValue& k = r.values[static_cast<int>(sce::FitParameter::BristleStiffness)];
