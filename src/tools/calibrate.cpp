@@ -93,6 +93,23 @@ std::vector<std::string> mismatches(const sce::FitResult& r)
   return out;
 }
 
+// Gaps in the recording, named by topic: messages without an IMU sample near them, and odometry that restarted the
+// estimator (a gap or a time jump). Both are left out of the fit and counted; these say where they come from.
+std::vector<std::string> gaps(const sce::FitResult& r, const sce::CalibrationRecording& rec)
+{
+  std::vector<std::string> out;
+  const int no_imu = r.rejected[static_cast<int>(sce::Rejection::NoImu)];
+  if (no_imu > 0)
+    out.push_back(std::to_string(no_imu) + " odometry messages (" +
+                  format("%.1f", 100.0 * no_imu / std::max(1, r.samples)) + " %) have no IMU sample on " + rec.imu_topic + " within 50 ms of them: gaps in the IMU's recording; "
+                  "they are left out");
+  const int resets = r.rejected[static_cast<int>(sce::Rejection::Reset)];
+  if (resets > 0)
+    out.push_back(std::to_string(resets) + " gap(s) or time jump(s) in " + rec.odom_topic +
+                  ": the estimator starts afresh after each (the message there is left out)");
+  return out;
+}
+
 std::string valueComment(const sce::FittedValue& v)
 {
   if (!v.fitted)
@@ -220,6 +237,8 @@ int main(int argc, char** argv)
     header += "starting from " + params + "\n" + coverage(r, rec) + "\n" + quality(r) + "\n";
     for (const std::string& w : mismatches(r))
       header += "WARNING: " + w + "\n";
+    for (const std::string& w : gaps(r, rec))
+      header += "WARNING: " + w + "\n";
     {
       std::ofstream out(output);
       if (!out)
@@ -299,6 +318,8 @@ int main(int argc, char** argv)
     std::printf("  fit: %s, %.1f s (%.1f s reading the bags, %d thread(s) fitting)\n", quality(r).c_str(), seconds,
                 read_seconds, jobs);
     for (const std::string& w : mismatches(r))
+      std::printf("  WARNING: %s\n", w.c_str());
+    for (const std::string& w : gaps(r, rec))
       std::printf("  WARNING: %s\n", w.c_str());
     std::printf("  parameter file: %s%s\n", output.c_str(), report.empty() ? "" : ("; report: " + report).c_str());
     return 0;

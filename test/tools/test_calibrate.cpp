@@ -35,15 +35,21 @@ const std::string kDir = "/tmp/sce_test_calibrate";
 const std::string kParams = std::string(PACKAGE_SOURCE_DIR) + "/config/contact_estimator.yaml";
 
 // a copy of a bag with only some topics, or every IMU message but every other one
-void filterBag(const std::string& in, const std::string& out, bool keep_odometry, bool keep_imu, int imu_every = 1)
+// A copy of a bag with the odometry or the IMU left out, the IMU thinned to every imu_every-th message, and the IMU
+// left out over [gap_from, gap_to) seconds after the bag's start.
+void filterBag(const std::string& in, const std::string& out, bool keep_odometry, bool keep_imu, int imu_every = 1,
+               double gap_from = 0.0, double gap_to = 0.0)
 {
   rosbag::Bag src(in), dst(out, rosbag::bagmode::Write);
+  rosbag::View all(src);
+  const ros::Time start = all.getBeginTime();
   int n = 0;
-  for (const rosbag::MessageInstance& m : rosbag::View(src))
+  for (const rosbag::MessageInstance& m : all)
   {
     if (m.getTopic() == "/odom" && keep_odometry)
       dst.write(m.getTopic(), m.getTime(), m);
-    if (m.getTopic() == "/imu" && keep_imu && n++ % imu_every == 0)
+    const double t = (m.getTime() - start).toSec();
+    if (m.getTopic() == "/imu" && keep_imu && n++ % imu_every == 0 && !(t >= gap_from && t < gap_to))
       dst.write(m.getTopic(), m.getTime(), m);
   }
 }
@@ -172,4 +178,23 @@ TEST_F(Calibrate, AWrongRollingRadiusIsCalledOut)
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("WARNING: the reduced chi-square is"), std::string::npos) << r.out;
   EXPECT_NE(slurp(kDir + "/wrong_radius.yaml").find("# WARNING: the reduced chi-square is"), std::string::npos);
+}
+
+TEST_F(Calibrate, GapsInTheImuAreCountedAndNamed)
+{
+  // the IMU silent for a second in the middle of the run: the odometry there has nothing to compare with
+  filterBag(kDir + "/run.bag", kDir + "/imu_gap.bag", true, true, 1, 4.0, 5.0);
+  const Outcome r = runCommand(std::string(CALIBRATE_PATH) + " -i " + kDir + "/imu_gap.bag -p " + kParams +
+                               " --set robot_mass=3 --set friction=0.6 --fit bristle_stiffness -o " + kDir +
+                               "/gap.yaml");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("no IMU sample paired"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("have no IMU sample on /imu within 50 ms"), std::string::npos) << r.out;
+  EXPECT_NE(slurp(kDir + "/gap.yaml").find("# WARNING: "), std::string::npos);
+  // about a second at 100 Hz (the interpolation reaches 50 ms into the gap from each side)
+  const std::size_t at = r.out.find(" odometry messages (");
+  ASSERT_NE(at, std::string::npos);
+  const int count = std::atoi(r.out.c_str() + r.out.rfind(' ', at - 1) + 1);
+  EXPECT_GE(count, 85) << r.out;
+  EXPECT_LE(count, 105) << r.out;
 }
