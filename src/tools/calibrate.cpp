@@ -101,14 +101,27 @@ std::vector<std::string> gaps(const sce::FitResult& r, const sce::CalibrationRec
   const int no_imu = r.rejected[static_cast<int>(sce::Rejection::NoImu)];
   if (no_imu > 0)
     out.push_back(std::to_string(no_imu) + " odometry messages (" +
-                  format("%.1f", 100.0 * no_imu / std::max(1, r.samples)) + " %) have no IMU sample on " + rec.imu_topic + " within 50 ms of them: gaps in the IMU's recording; "
-                  "they are left out");
+                  format("%.1f", 100.0 * no_imu / std::max(1, r.samples)) + " %) have no IMU sample on " +
+                  rec.imu_topic + " within 50 ms of them: gaps in the IMU's recording; they are left out");
   const int resets = r.rejected[static_cast<int>(sce::Rejection::Reset)];
   if (resets > 0)
     out.push_back(std::to_string(resets) + " gap(s) or time jump(s) in " + rec.odom_topic +
                   ": the estimator starts afresh after each (the message there is left out)");
   return out;
 }
+
+// Everything the summary and the file's header warn of: a run that is not the model's, and gaps in the recording.
+std::vector<std::string> warnings(const sce::FitResult& r, const sce::CalibrationRecording& rec)
+{
+  std::vector<std::string> out = mismatches(r);
+  for (std::string& w : gaps(r, rec))
+    out.push_back(std::move(w));
+  return out;
+}
+
+// Where the floor's damping is fitted, what its other two parameters are.
+constexpr const char* kFloorHeld =
+    "NOT determined (held): at the run's speeds the data determine only surface_damping / surface_stiffness";
 
 std::string valueComment(const sce::FittedValue& v)
 {
@@ -235,9 +248,7 @@ int main(int argc, char** argv)
     for (const std::string& b : bags)
       header += "  " + b + "\n";
     header += "starting from " + params + "\n" + coverage(r, rec) + "\n" + quality(r) + "\n";
-    for (const std::string& w : mismatches(r))
-      header += "WARNING: " + w + "\n";
-    for (const std::string& w : gaps(r, rec))
+    for (const std::string& w : warnings(r, rec))
       header += "WARNING: " + w + "\n";
     {
       std::ofstream out(output);
@@ -254,8 +265,7 @@ int main(int argc, char** argv)
           if (name == sce::parameterName(v.parameter))
             return valueComment(v);
         if (floor && (name == "surface_stiffness" || name == "surface_density"))
-          return std::string("NOT determined (held): at the run's speeds the data determine only surface_damping / "
-                             "surface_stiffness");
+          return std::string(kFloorHeld);
         return std::string();
       });
     }
@@ -305,8 +315,7 @@ int main(int argc, char** argv)
         std::printf("  correlations: %s\n", pairs.c_str());
     }
     if (r.values[static_cast<int>(sce::FitParameter::SurfaceDamping)].fitted)
-      std::printf("  surface_stiffness and surface_density: NOT determined (held): at the run's speeds the data "
-                  "determine only surface_damping / surface_stiffness\n");
+      std::printf("  surface_stiffness and surface_density: %s\n", kFloorHeld);
     {
       // what the data determine is k a^3 (the slip stiffness), with a held at the parameter file's
       const sce::FittedValue& k = r.values[static_cast<int>(sce::FitParameter::BristleStiffness)];
@@ -317,9 +326,7 @@ int main(int argc, char** argv)
     }
     std::printf("  fit: %s, %.1f s (%.1f s reading the bags, %d thread(s) fitting)\n", quality(r).c_str(), seconds,
                 read_seconds, jobs);
-    for (const std::string& w : mismatches(r))
-      std::printf("  WARNING: %s\n", w.c_str());
-    for (const std::string& w : gaps(r, rec))
+    for (const std::string& w : warnings(r, rec))
       std::printf("  WARNING: %s\n", w.c_str());
     std::printf("  parameter file: %s%s\n", output.c_str(), report.empty() ? "" : ("; report: " + report).c_str());
     return 0;

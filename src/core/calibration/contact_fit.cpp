@@ -100,7 +100,12 @@ struct Message
 class Parameters
 {
 public:
-  Parameters(const EstimatorSettings& base, std::vector<FitParameter> fitted) : base_(base), fitted_(std::move(fitted)) {}
+  Parameters(const EstimatorSettings& base, std::vector<FitParameter> fitted)
+    : base_(base)
+    , fitted_(std::move(fitted))
+    , floor_(std::find(fitted_.begin(), fitted_.end(), FitParameter::SurfaceDamping) != fitted_.end())
+  {
+  }
   int size() const { return static_cast<int>(fitted_.size()); }
   EstimatorSettings at(const double* x) const
   {
@@ -111,15 +116,13 @@ public:
   }
   FitParameter parameter(int j) const { return fitted_[j]; }
   /// The floor's damping is fitted: the rolling resistance then comes from the trial parameters, not the message.
-  bool floorFitted() const
-  {
-    return std::find(fitted_.begin(), fitted_.end(), FitParameter::SurfaceDamping) != fitted_.end();
-  }
-  double baseValue(int j) const { return field(base_, fitted_[j]); }
+  bool floorFitted() const { return floor_; }
+  const EstimatorSettings& base() const { return base_; }
 
 private:
   EstimatorSettings base_;
   std::vector<FitParameter> fitted_;
+  bool floor_;
 };
 
 // The brush force (paper frame, rolling along +x) of the steady model (Sects. 3, 6: the state a message's slips settle
@@ -297,8 +300,8 @@ Solution solve(const std::vector<Message>& messages, const Parameters& params, c
   for (int j = 0; j < params.size() && problem.NumResidualBlocks() > 0; ++j)
   {
     // the parameters within their ranges (x is the log of the ratio to the settings' value)
-    const auto range = rangeOf(params.parameter(j), params.at(out.x.data()));
-    const double base = params.baseValue(j);
+    const auto range = rangeOf(params.parameter(j), params.base());
+    const double base = field(params.base(), params.parameter(j));
     problem.SetParameterLowerBound(out.x.data(), j, std::log(range.first / base));
     problem.SetParameterUpperBound(out.x.data(), j, std::log(range.second / base));
   }
@@ -577,22 +580,27 @@ FitResult fitWithFrictionBounded(const std::vector<CalibrationSample>& samples, 
   again.fit[static_cast<int>(FitParameter::Friction)] = false;
   EstimatorSettings held = settings;
   held.friction = std::max(settings.friction, bound);
-  if (!profile[best].usable)
-  {
-    FitResult second = fitContact(samples, held, again);
-    FittedValue& k = second.values[static_cast<int>(FitParameter::BristleStiffness)];
-    k.determined = false;
-    k.note = "fitted with mu held at " + std::to_string(held.friction) + ", which the data give only as a bound";
+  // the result's friction: the free fit's bound, at the value the others were fitted with
+  const auto holdFriction = [&](FitResult& second, const std::string& note) {
     FittedValue& m = second.values[static_cast<int>(FitParameter::Friction)];
     m = mu;
     m.value = held.friction;
     m.sd = 0.0;
     m.low = bound;
     m.high = std::numeric_limits<double>::infinity();
+    m.note = note;
+    second.settings.friction = held.friction;  // the file's, or the nearest value the run allows
+    second.iterations += iterations;
+  };
+  if (!profile[best].usable)
+  {
+    FitResult second = fitContact(samples, held, again);
+    FittedValue& k = second.values[static_cast<int>(FitParameter::BristleStiffness)];
+    k.determined = false;
+    k.note = "fitted with mu held at " + std::to_string(held.friction) + ", which the data give only as a bound";
     k.low = 0.0;
     k.high = std::numeric_limits<double>::infinity();
-    second.settings.friction = held.friction;
-    second.iterations += iterations;
+    holdFriction(second, mu.note);
     return second;
   }
   // Between points the set's edge, and the stiffness with it, may lie anywhere: halve each step across the edge until
@@ -644,7 +652,6 @@ FitResult fitWithFrictionBounded(const std::vector<CalibrationSample>& samples, 
   // the stiffness with mu held, every message (the profile's value there a start close to the answer)
   held.bristle_stiffness = h.usable ? h.k : profile[nearest].k;
   FitResult second = fitContact(samples, held, again);
-  second.iterations += iterations;
   FittedValue& k = second.values[static_cast<int>(FitParameter::BristleStiffness)];
   k.start = settings.bristle_stiffness;
   if (!k.determined)
@@ -680,15 +687,8 @@ FitResult fitWithFrictionBounded(const std::vector<CalibrationSample>& samples, 
   }
   else if (k.determined)
     k.note = "over " + range + " (what the forces allow; mu only a bound)";
-  FittedValue& m = second.values[static_cast<int>(FitParameter::Friction)];
-  m = mu;
-  m.value = held.friction;
-  m.sd = 0.0;
-  m.low = bound;
-  m.high = std::numeric_limits<double>::infinity();
-  m.note = mu.note + "; the forces' shape allows " + range + "; held at " + formatValue(held.friction) +
-           " for the others";
-  second.settings.friction = held.friction;  // the file's, or the nearest value the run allows
+  holdFriction(second, mu.note + "; the forces' shape allows " + range + "; held at " + formatValue(held.friction) +
+                           " for the others");
   return second;
 }
 }  // namespace
