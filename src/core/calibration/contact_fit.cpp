@@ -934,8 +934,10 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
     if (v.fitted && v.determined)
       field(out.settings, v.parameter) = v.value;
 
+  // friction only a bound: k's interval over every mu the forces allow (the profile fits k, so only where k is asked
+  // for; with friction and the floor alone, the floor's sd from the free fit already marginalises mu)
   const FittedValue& mu = out.values[static_cast<int>(FitParameter::Friction)];
-  if (mu.fitted && mu.lower_bound > 0.0 && n > 1)
+  if (mu.fitted && mu.lower_bound > 0.0 && out.values[static_cast<int>(FitParameter::BristleStiffness)].fitted)
     return fitWithFrictionBounded(samples, settings, options, messages, base, result, out);
   return out;
 }
