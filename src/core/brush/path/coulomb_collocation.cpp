@@ -17,12 +17,14 @@ constexpr double kHalfPi = 1.5707963267948966;
 constexpr long kStepWork = 40;       // three points and the Newton iterations (PathIntegrals::work units)
 constexpr int kMaxSteps = 2000;      // attempted steps; beyond, the general solver takes the piece over
 constexpr int kMaxNewton = 7;
+constexpr double kNewtonStop = 1e-5;  // the last Newton correction on the stages' t
 constexpr double kMaxTurn = 1.0;     // |tan(turn / 2)| within a step: the bristle turns by less than a right angle
 constexpr double kCosMaxDriveTurn = 0.8775825618903728;  // cos(0.5): the drive turns by less between neighbours
 constexpr double kTailShare = 0.05;  // of the tolerance: what the unintegrated stretches at the edges may hold
 constexpr double kEdgeShare = 1e-2;  // of the tolerance: a piece that holds less is left to the general solver
 constexpr double kInset = 0.01831563888873418;  // e^-4: how much further in than the rim's stretch the steps start
 constexpr double kRigidShare = 0.2;  // of the tolerance: the rigid part's rules (their bound is cheap to tighten)
+constexpr double kDipReach = 0.5;    // above 0.4453: Radau::dip's cubic is positive where its values exceed this spread
 
 // Radau IIA with three stages: nodes, coefficients (the last row is the quadrature's weights), and the constants of
 // RADAU5's error estimate (Hairer and Wanner, Solving ODEs II, IV.8).
@@ -163,8 +165,12 @@ private:
       if (std::abs(x) < 0.1)
       {
         const double x2 = x * x;
-        phi1 = cd(1.0 - x2 / 6.0 * (1.0 - x2 / 20.0), 0.5 * x * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0)));
-        phi2 = cd(0.5 - x2 / 24.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0)), x / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0))));
+        // (products by the reciprocals: a division costs several multiplications, and these run at every stage)
+        constexpr double k6 = 1.0 / 6.0, k12 = 1.0 / 12.0, k20 = 1.0 / 20.0, k24 = 1.0 / 24.0, k30 = 1.0 / 30.0,
+                         k42 = 1.0 / 42.0, k56 = 1.0 / 56.0, k72 = 1.0 / 72.0;
+        phi1 = cd(1.0 - x2 * k6 * (1.0 - x2 * k20), 0.5 * x * (1.0 - x2 * k12 * (1.0 - x2 * k30)));
+        phi2 = cd(0.5 - x2 * k24 * (1.0 - x2 * k30 * (1.0 - x2 * k56)),
+                  x * k6 * (1.0 - x2 * k20 * (1.0 - x2 * k42 * (1.0 - x2 * k72))));
       }
       else
       {
@@ -255,6 +261,10 @@ private:
 bool Collocation::collocate(const Riccati* R, double step, const double* guess, double* T) const
 {
   double Z[3] = { guess[0], guess[1], guess[2] };
+  double hA[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      hA[i][j] = step * kRadau.a[i][j];
   for (int it = 0; it < kMaxNewton; ++it)
   {
     double F[3], J[3];
@@ -268,7 +278,7 @@ bool Collocation::collocate(const Riccati* R, double step, const double* guess, 
     {
       r[i] = step * (kRadau.a[i][0] * F[0] + kRadau.a[i][1] * F[1] + kRadau.a[i][2] * F[2]) - Z[i];
       for (int j = 0; j < 3; ++j)
-        M[i][j] = (i == j ? 1.0 : 0.0) - step * kRadau.a[i][j] * J[j];
+        M[i][j] = (i == j ? 1.0 : 0.0) - hA[i][j] * J[j];
     }
     // Cramer's rule on the 3x3 system
     const double c00 = M[1][1] * M[2][2] - M[1][2] * M[2][1], c01 = M[1][2] * M[2][0] - M[1][0] * M[2][2],
@@ -286,8 +296,10 @@ bool Collocation::collocate(const Riccati* R, double step, const double* guess, 
     Z[0] += d0;
     Z[1] += d1;
     Z[2] += d2;
-    // Newton's convergence is quadratic: what this correction leaves is of the order of its square
-    if (std::max({ std::abs(d0), std::abs(d1), std::abs(d2) }) <= 1e-7)
+    // Newton's convergence is quadratic: what this correction leaves is of the order of its square, 1e-10 (a direction
+    // error of 2e-10 rad, far below any step's share of a tolerance the solver takes; 1e-7, a third iteration more
+    // often than not, bought nothing the sweeps could see)
+    if (std::max({ std::abs(d0), std::abs(d1), std::abs(d2) }) <= kNewtonStop)
     {
       for (int i = 0; i < 3; ++i)
         T[i] = Z[i];
@@ -421,7 +433,10 @@ bool Collocation::run(const SlideStart& start, SlideEnd& end, SlideStart& resume
       double lam[4] = { pushing(p0, e), pushing(P[0], E[0]), pushing(P[1], E[1]), pushing(P[2], E[2]) };
       double xs[6] = { 0.0, kRadau.c[0], kRadau.c[1], 1.0 }, ls[6] = { lam[0], lam[1], lam[2], lam[3] };
       int count = 4;
-      if (*std::min_element(lam, lam + 4) >= 0.0)
+      const double lam_min = *std::min_element(lam, lam + 4), lam_max = *std::max_element(lam, lam + 4);
+      // the cubic dips below its smallest point value by at most 0.4453 times their spread (the largest sum of the
+      // negative Lagrange weights on [0, 1]): where that leaves it positive, no dip is sought
+      if (lam_min >= 0.0 && lam_min <= kDipReach * (lam_max - lam_min))
       {
         double lowest = 0.0, at_x = 0.0;
         for (int i = 0; i < 15; ++i)
