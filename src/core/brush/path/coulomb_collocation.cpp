@@ -297,8 +297,8 @@ bool Collocation::collocate(const Riccati* R, double step, const double* guess, 
     Z[1] += d1;
     Z[2] += d2;
     // Newton's convergence is quadratic: what this correction leaves is of the order of its square, 1e-10 (a direction
-    // error of 2e-10 rad, far below any step's share of a tolerance the solver takes; 1e-7, a third iteration more
-    // often than not, bought nothing the sweeps could see)
+    // error of 2e-10 rad, far below any step's share of a tolerance the solver takes; 1e-7 cost a third iteration at
+    // some steps and bought nothing the sweeps could see)
     if (std::max({ std::abs(d0), std::abs(d1), std::abs(d2) }) <= kNewtonStop)
     {
       for (int i = 0; i < 3; ++i)
