@@ -95,14 +95,15 @@ std::vector<std::string> mismatches(const sce::FitResult& r)
 
 // Gaps in the recording, named by topic: messages without an IMU sample near them, and odometry that restarted the
 // estimator (a gap or a time jump). Both are left out of the fit and counted; these say where they come from.
-std::vector<std::string> gaps(const sce::FitResult& r, const sce::CalibrationRecording& rec)
+std::vector<std::string> gaps(const sce::FitResult& r, const sce::CalibrationRecording& rec, double max_imu_gap)
 {
   std::vector<std::string> out;
   const int no_imu = r.rejected[static_cast<int>(sce::Rejection::NoImu)];
   if (no_imu > 0)
     out.push_back(std::to_string(no_imu) + " odometry messages (" +
                   format("%.1f", 100.0 * no_imu / std::max(1, r.samples)) + " %) have no IMU sample on " +
-                  rec.imu_topic + " within 50 ms of them: gaps in the IMU's recording; they are left out");
+                  rec.imu_topic + " within " + format("%.0f", 1e3 * max_imu_gap) +
+                  " ms of them: gaps in the IMU's recording; they are left out");
   const int resets = r.rejected[static_cast<int>(sce::Rejection::Reset)];
   if (resets > 0)
     out.push_back(std::to_string(resets) + " gap(s) or time jump(s) in " + rec.odom_topic +
@@ -111,10 +112,10 @@ std::vector<std::string> gaps(const sce::FitResult& r, const sce::CalibrationRec
 }
 
 // Everything the summary and the file's header warn of: a run that is not the model's, and gaps in the recording.
-std::vector<std::string> warnings(const sce::FitResult& r, const sce::CalibrationRecording& rec)
+std::vector<std::string> warnings(const sce::FitResult& r, const sce::CalibrationRecording& rec, double max_imu_gap)
 {
   std::vector<std::string> out = mismatches(r);
-  for (std::string& w : gaps(r, rec))
+  for (std::string& w : gaps(r, rec, max_imu_gap))
     out.push_back(std::move(w));
   return out;
 }
@@ -248,7 +249,7 @@ int main(int argc, char** argv)
     for (const std::string& b : bags)
       header += "  " + b + "\n";
     header += "starting from " + params + "\n" + coverage(r, rec) + "\n" + quality(r) + "\n";
-    for (const std::string& w : warnings(r, rec))
+    for (const std::string& w : warnings(r, rec, read.max_imu_gap))
       header += "WARNING: " + w + "\n";
     {
       std::ofstream out(output);
@@ -326,7 +327,7 @@ int main(int argc, char** argv)
     }
     std::printf("  fit: %s, %.1f s (%.1f s reading the bags, %d thread(s) fitting)\n", quality(r).c_str(), seconds,
                 read_seconds, jobs);
-    for (const std::string& w : warnings(r, rec))
+    for (const std::string& w : warnings(r, rec, read.max_imu_gap))
       std::printf("  WARNING: %s\n", w.c_str());
     std::printf("  parameter file: %s%s\n", output.c_str(), report.empty() ? "" : ("; report: " + report).c_str());
     return 0;

@@ -34,7 +34,6 @@ namespace
 const std::string kDir = "/tmp/sce_test_calibrate";
 const std::string kParams = std::string(PACKAGE_SOURCE_DIR) + "/config/contact_estimator.yaml";
 
-// a copy of a bag with only some topics, or every IMU message but every other one
 // A copy of a bag with the odometry or the IMU left out, the IMU thinned to every imu_every-th message, and the IMU
 // left out over [gap_from, gap_to) seconds after the bag's start.
 void filterBag(const std::string& in, const std::string& out, bool keep_odometry, bool keep_imu, int imu_every = 1,
