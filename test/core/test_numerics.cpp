@@ -257,5 +257,47 @@ TEST(QuadratureRules, KronrodComplementIsInterpolatoryOnTheOtherEightNodes)
   }
 }
 
+TEST(QuadratureRules, Kronrod7AndItsGaussRule)
+{
+  // The 7-point Kronrod rule is exact to degree 11 and not 12, its embedded 3-point Gauss rule to degree 5 and not 6;
+  // its complement (the interpolatory rule on the 4 Kronrod-only nodes) to degree 3 and not 4, zero at the Gauss nodes;
+  // nodes ascending and symmetric
+  const GaussKronrod7& r = gaussKronrod7();
+  const std::array<double, 7>& c = kronrod7Complement();
+  for (int degree = 0; degree <= 12; ++degree)
+  {
+    double k = 0.0, g = 0.0, q = 0.0;
+    for (int i = 0; i < 7; ++i)
+    {
+      k += r.wk[i] * std::pow(r.x[i], degree);
+      g += r.wg[i] * std::pow(r.x[i], degree);
+      q += c[i] * std::pow(r.x[i], degree);
+    }
+    const double exact = degree % 2 ? 0.0 : 2.0 / (degree + 1);
+    if (degree <= 11)
+      EXPECT_NEAR(k, exact, 1e-14) << degree;
+    else
+      EXPECT_GT(std::abs(k - exact), 1e-6);
+    if (degree <= 5)
+      EXPECT_NEAR(g, exact, 1e-14) << degree;
+    else if (degree == 6)
+      EXPECT_GT(std::abs(g - exact), 1e-6);
+    if (degree <= 3)
+      EXPECT_NEAR(q, exact, 1e-14) << degree;
+    else if (degree == 4)
+      EXPECT_GT(std::abs(q - exact), 1e-6);
+  }
+  int gauss_nodes = 0;
+  for (int i = 0; i < 7; ++i)
+  {
+    gauss_nodes += r.wg[i] != 0.0;
+    if (r.wg[i] != 0.0)
+      EXPECT_EQ(c[i], 0.0);
+    EXPECT_EQ(r.x[i], -r.x[6 - i]);
+  }
+  EXPECT_EQ(gauss_nodes, 3);
+  EXPECT_TRUE(std::is_sorted(r.x.begin(), r.x.end()));
+}
+
 }  // namespace
 }  // namespace sphere_contact_estimator::numerics

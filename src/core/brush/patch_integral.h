@@ -26,13 +26,13 @@ struct PatchIntegral
 
 /// Integrates the field over the patch to `tolerance` (in the units of the result, a bound on each of the
 /// three integrals). Across the paths, theta in (-pi/2, pi/2) (y0 = sin theta), by 15-point Gauss-Kronrod
-/// rules on sub-intervals: split first at the path through the spin pole, where the sliding direction
+/// rules on sub-intervals (7-point ones on those narrow enough for the tolerance: kNarrowWidth): split first at the path through the spin pole, where the sliding direction
 /// reverses, and where G's extent changes (structureBreakpoints), each such interval probed just inside its ends
 /// for a band of other structure beside them; then wherever two samples of a rule see a different event structure
 /// along their paths (signatures differ, or the onset's fold changes sign: PathIntegrals::fold), located by
 /// bisection on the structure, so that no rule straddles a change of structure; then the sub-interval with
 /// the largest error estimate is halved until the sum meets the tolerance. The estimate is |Kronrod - Gauss|
-/// where a third, degree-7 rule on the same samples shows the rules converging, and twice the largest of the three
+/// where a third, lower-degree rule on the same samples shows the rules converging, and twice the largest of the three
 /// differences where it does not. The along-path quadrature's own bound (solvePath) is added. Every bound on an unresolved piece uses the field's own bound on
 /// |u| (BristleField::deflectionBound), so tiny slips converge at once. Stops, unconverged, when the paths' work
 /// reaches `max_work`: the paths left unsolved and the intervals left unrefined are bounded, never guessed. `stepper`:

@@ -97,12 +97,13 @@ private:
   bool have_check_ = false;
   double lag_travel_ = 0.0;
   static constexpr double kLagStride = 0.25;  // of the patch radius: how far the transient rolls between lag checks
-  // Where the last check's lag was kFarLag times what leaving allows, the next waits a whole patch radius: a lag that
-  // large falls under the limit within it only where new changes cancel it (the slowest kernel keeps 0.41 of a change
-  // after a radius); checking late only delays leaving, which takes checks under the limit at the usual stride over a
-  // whole transit, and the lag at leaving holds no change older than that transit
+  // Where the last check's lag was kFarLag times what leaving allows, the next waits a transit (2a, after which no change
+  // is remembered): a lag that large falls under the limit sooner only where new changes cancel it (the slowest kernel
+  // keeps 0.41 of a change after a radius); checking late only delays leaving, which takes checks under the limit at
+  // the usual stride over a whole transit, and the lag at leaving holds no change older than that transit. (A radius
+  // was one check per message for a 1-cm patch at 1 m/s and 100 Hz, a fifth of the manoeuvre's weave.)
   static constexpr double kFarLag = 4.0;
-  static constexpr double kFarLagStride = 1.0;
+  static constexpr double kFarLagStride = 2.0;
   void chooseFamily(const ContactKinematics& kin, const Slips& s, double dt, const SteadyCheck& check);
   BrushForces transientAnswer(const ContactKinematics& kin, const Slips& s, double dt, double target, int& resolution);
   void carryAcrossSwitches(BrushForces& out, const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame,

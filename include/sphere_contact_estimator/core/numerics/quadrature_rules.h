@@ -31,4 +31,17 @@ const GaussKronrod15& gaussKronrod15();
 /// samples, to tell whether the rules converge (a null rule of the error estimate).
 const std::array<double, 15>& kronrodComplement();
 
+/// The 7-point Gauss-Kronrod rule on [-1, 1] with its embedded 3-point Gauss rule (degrees 11 and 5), laid out as
+/// GaussKronrod15: for intervals narrow enough that fewer nodes meet a tolerance.
+struct GaussKronrod7
+{
+  std::array<double, 7> x{}, wk{}, wg{};
+};
+
+const GaussKronrod7& gaussKronrod7();
+
+/// The interpolatory rule on the 4 nodes of gaussKronrod7() that its Gauss rule lacks (exact to degree 3), as
+/// kronrodComplement.
+const std::array<double, 7>& kronrod7Complement();
+
 }  // namespace sphere_contact_estimator::numerics
