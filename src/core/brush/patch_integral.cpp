@@ -77,40 +77,34 @@ struct AcrossRule
   }
 };
 
+// A Gauss-Kronrod pair (numerics::GaussKronrod15 or GaussKronrod7) and its complement's weights as an AcrossRule.
+template <class Pair, std::size_t N>
+AcrossRule acrossRule(const Pair& gk, const std::array<double, N>& complement)
+{
+  AcrossRule r;
+  r.n = static_cast<int>(N);
+  for (std::size_t i = 0; i < N; ++i)
+  {
+    r.x[i] = gk.x[i];
+    r.wk[i] = gk.wk[i];
+    r.wg[i] = gk.wg[i];
+    r.wr[i] = complement[i];
+  }
+  r.finish();
+  return r;
+}
+
 // 15 points: Gauss 7 (degree 13) in Kronrod 15 (degree 22), the complement exact to degree 7.
 const AcrossRule& kronrod15()
 {
-  static const AcrossRule rule = [] {
-    AcrossRule r;
-    const numerics::GaussKronrod15& gk = numerics::gaussKronrod15();
-    r.n = 15;
-    r.x = gk.x;
-    r.wk = gk.wk;
-    r.wg = gk.wg;
-    r.wr = numerics::kronrodComplement();
-    r.finish();
-    return r;
-  }();
+  static const AcrossRule rule = acrossRule(numerics::gaussKronrod15(), numerics::kronrodComplement());
   return rule;
 }
 
 // 7 points: Gauss 3 (degree 5) in Kronrod 7 (degree 11), the complement exact to degree 3.
 const AcrossRule& kronrod7()
 {
-  static const AcrossRule rule = [] {
-    AcrossRule r;
-    const numerics::GaussKronrod7& gk = numerics::gaussKronrod7();
-    r.n = 7;
-    for (int i = 0; i < 7; ++i)
-    {
-      r.x[i] = gk.x[i];
-      r.wk[i] = gk.wk[i];
-      r.wg[i] = gk.wg[i];
-      r.wr[i] = numerics::kronrod7Complement()[i];
-    }
-    r.finish();
-    return r;
-  }();
+  static const AcrossRule rule = acrossRule(numerics::gaussKronrod7(), numerics::kronrod7Complement());
   return rule;
 }
 
