@@ -6,6 +6,7 @@
 #include <cmath>
 #include <complex>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 // GTest
@@ -291,6 +292,74 @@ TEST(QuadratureRules, Kronrod7AndItsGaussRule)
   }
   EXPECT_EQ(gauss_nodes, 3);
   EXPECT_TRUE(std::is_sorted(r.x.begin(), r.x.end()));
+}
+
+// A rule's sum of y^degree minus its exact integral against the weight (1 - y^2)^(3/2) on [-1, 1]: B((k + 1) / 2, 5 / 2)
+// for even k (substituting t = y^2), 0 for odd.
+double jacobiMomentError(const JacobiKronrod& r, const std::array<double, 13>& w, int degree)
+{
+  double sum = 0.0;
+  for (int i = 0; i < r.size; ++i)
+    sum += w[i] * std::pow(r.y[i], degree);
+  return sum - (degree % 2 ? 0.0 : std::beta(0.5 * (degree + 1), 2.5));
+}
+
+TEST(QuadratureRules, JacobiKronrodIsExactForItsWeight)
+{
+  // Against the weight's own moments (not the tables' source): Kronrod exact to degree 3n + 1, Gauss to 2n - 1, the
+  // complement to n, each failing at the first even degree beyond (odd ones vanish by symmetry); n Gauss nodes and
+  // n + 1 others, interlaced; every Kronrod weight positive; nodes ascending, symmetric and inside (-1, 1).
+  for (int n = JacobiKronrod::kMinPoints; n <= JacobiKronrod::kMaxPoints; ++n)
+  {
+    const JacobiKronrod& r = jacobiKronrod(n);
+    ASSERT_EQ(r.n, n);
+    ASSERT_EQ(r.size, 2 * n + 1);
+    const auto firstEvenAbove = [](int d) { return d % 2 ? d + 1 : d + 2; };
+    for (int degree = 0; degree <= firstEvenAbove(3 * n + 1); ++degree)
+    {
+      const double k = jacobiMomentError(r, r.wk, degree), g = jacobiMomentError(r, r.wg, degree),
+                   q = jacobiMomentError(r, r.wr, degree);
+      if (degree <= 3 * n + 1)
+      {
+        EXPECT_NEAR(k, 0.0, 1e-15) << n << " " << degree;
+      }
+      else if (degree == firstEvenAbove(3 * n + 1))
+      {
+        EXPECT_GT(std::abs(k), 1e-9) << n << " " << degree;
+      }
+      if (degree <= 2 * n - 1)
+      {
+        EXPECT_NEAR(g, 0.0, 1e-15) << n << " " << degree;
+      }
+      else if (degree == 2 * n)
+      {
+        EXPECT_GT(std::abs(g), 1e-9) << n << " " << degree;
+      }
+      if (degree <= n)
+      {
+        EXPECT_NEAR(q, 0.0, 1e-15) << n << " " << degree;
+      }
+      else if (degree == firstEvenAbove(n))
+      {
+        EXPECT_GT(std::abs(q), 1e-9) << n << " " << degree;
+      }
+    }
+    int gauss_nodes = 0;
+    for (int i = 0; i < r.size; ++i)
+    {
+      const bool gauss = r.wg[i] != 0.0;
+      gauss_nodes += gauss;
+      EXPECT_EQ(gauss, i % 2 == 1) << n << " " << i;  // interlaced: Kronrod-only nodes first and last
+      EXPECT_EQ(gauss ? r.wr[i] : r.wg[i], 0.0);
+      EXPECT_GT(r.wk[i], 0.0);
+      EXPECT_EQ(r.y[i], -r.y[r.size - 1 - i]);
+      EXPECT_LT(std::abs(r.y[i]), 1.0);
+    }
+    EXPECT_EQ(gauss_nodes, n);
+    EXPECT_TRUE(std::is_sorted(r.y.begin(), r.y.begin() + r.size));
+  }
+  EXPECT_THROW(jacobiKronrod(2), std::invalid_argument);
+  EXPECT_THROW(jacobiKronrod(7), std::invalid_argument);
 }
 
 }  // namespace

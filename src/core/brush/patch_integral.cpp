@@ -108,9 +108,60 @@ const AcrossRule& kronrod7()
   return rule;
 }
 
+// The whole patch under the parabolic pressure: a path's load goes as cos^4(theta) (its length, its bound's height and
+// the width it stands for each bring a cos), so that across the paths the integrand is (1 - y^2)^(3/2) R(y) in the
+// crossing height y = sin(theta), with R smooth where the structure is one. Legendre rules in theta see the cos^4 as a
+// function of degree ~ 10 (their errors at the Fig. 4 set: 3 points 0.3, 5 points 9e-3, 7 points 5e-5 of the patch
+// integral, almost the same at every point), the Jacobi rules of that weight only R. The pair's nodes as theta on
+// [-1, 1] (x = asin(y) / (pi / 2)) and its weights divided by the weight there, so that the integrator sums the
+// integrand at its nodes as for any rule. (Not for the other pressures: near the patch's sides their bristles adhere
+// from the rim, the load goes as the path's length squared, and the odd powers of cos it brings leave sqrt(1 - y^2) in
+// R. Both laws: under the rigid law too the integrand is smooth across a patch of one structure.)
+AcrossRule jacobiAcross(int n)
+{
+  const numerics::JacobiKronrod& jk = numerics::jacobiKronrod(n);
+  AcrossRule r;
+  r.n = jk.size;
+  for (int i = 0; i < jk.size; ++i)
+  {
+    const double c2 = 1.0 - jk.y[i] * jk.y[i], k = 1.0 / (c2 * c2 * half_pi);  // dtheta = dy / cos, R = v / cos^4
+    r.x[i] = std::asin(jk.y[i]) / half_pi;
+    r.wk[i] = k * jk.wk[i];
+    r.wg[i] = k * jk.wg[i];
+    r.wr[i] = k * jk.wr[i];
+  }
+  r.finish();
+  return r;
+}
+
+// The Jacobi pair's Gauss points by the tolerance (of the patch's integrals): 3 (7 paths) from 5e-4, one more for each
+// factor 3.5 below, to 5 (11 paths) from 4.1e-5; below that the 15-point Legendre pair, as before (the references'
+// tolerances: they do not share the rule they check). Over the Fig. 4 set the 3-point Gauss rule's difference to its
+// Kronrod rule is at most 1.1e-3 where the structure is one, the 4-point's 3e-4, the 5-point's 8.5e-5, each the
+// previous one's over 3.5-3.7, and the error of the Kronrod sum at most 0.08 of that difference; a whole patch whose
+// estimate misses the tolerance is split into halves (the 15-point pairs): the thresholds put that at up to half of
+// the points at each choice and gave the least work over the set (1.34 M against 1.41 M with 4 points at 1e-3 of
+// mu F_z, 3.80 M against 4.52 M with 3 and 3.90 M with 5 points at 1e-4; the 15-point pair took 1.61 M and 4.60 M;
+// the rigid law's 0.94 M and 1.41 M went to 0.88 M and 1.26 M). The Kronrod sum's error stayed within 0.14 of the
+// estimate wherever the pair served (2000 random points of the Fig. 4 envelope per law, docs/models.md), and the
+// estimate above the error at every comparison of model_accuracy --sweep under both laws.
+constexpr double kJacobiTolerance = 5e-4;
+constexpr double kJacobiRatio = 3.5;
+
+const AcrossRule& jacobiRule(int n)
+{
+  static const std::array<AcrossRule, numerics::JacobiKronrod::kMaxPoints + 1> rules = [] {
+    std::array<AcrossRule, numerics::JacobiKronrod::kMaxPoints + 1> r{};
+    for (int k = numerics::JacobiKronrod::kMinPoints; k <= numerics::JacobiKronrod::kMaxPoints; ++k)
+      r[k] = jacobiAcross(k);
+    return r;
+  }();
+  return rules[std::clamp(n, numerics::JacobiKronrod::kMinPoints, numerics::JacobiKronrod::kMaxPoints)];
+}
+
 // The 7-point rule takes an interval no wider than this (in theta) at a tolerance of 1e-3 of mu F_z and, as its Gauss
 // rule's error on a width w falls as w^7 (degree 5), w ~ tolerance^(1/7) at others: about 0.37 at 1e-6, 0.72 at 1e-4,
-// 1.39 at 1e-2. The whole patch (pi wide) always takes the 15-point rule. Measured on the Fig. 4 set (both tilts, eq.
+// 1.39 at 1e-2. The whole patch (pi wide) takes the 15-point rule where jacobiAcross's does not serve. Measured on the Fig. 4 set (both tilts, eq.
 // 4b), against the 15-point rule everywhere: work -26 %, -17 %, -9 % at 1e-2, 1e-3, 1e-4 (the same paths at its median
 // point, 36 instead of 68 where the pole's path and G's extent cut the patch into four), estimates up to 0.62, 0.99, 1.0
 // of the tolerance; 0.8 saved less at every target, 1.2 cost more at 1e-4. Under eq. (4b) only: the rigid law's
@@ -156,6 +207,13 @@ public:
     continuous_ = field.law == SlidingLaw::Coulomb;
     // the tolerance as a fraction of mu F_z (the integrals' unit is mu F_z pi / peakFactor)
     narrow_ = continuous_ ? kNarrowWidth * std::pow(tolerance * field.pressure.peakFactor() / pi / 1e-3, 1.0 / 7.0) : 0.0;
+    if (field.pressure.squaredExponent() == 2 && tolerance >= kJacobiTolerance / (kJacobiRatio * kJacobiRatio))
+    {
+      int n = numerics::JacobiKronrod::kMinPoints;
+      for (double t = kJacobiTolerance; tolerance < t; t /= kJacobiRatio)
+        ++n;
+      whole_ = &jacobiRule(n);
+    }
   }
 
   PatchIntegral run()
@@ -293,7 +351,7 @@ private:
   // (narrower than the rule's outermost spacing) is sought with a path just inside it.
   void add(double a, double b, int depth, bool ends = false)
   {
-    const AcrossRule& rule = b - a < narrow_ ? kronrod7() : kronrod15();
+    const AcrossRule& rule = whole_ && a <= -half_pi && b >= half_pi ? *whole_ : b - a < narrow_ ? kronrod7() : kronrod15();
     const double half = 0.5 * (b - a), mid = 0.5 * (a + b);
     std::array<Sample, kMaxSamples> s{};  // the rule's nodes, a probe between them if their margins ask, probes at the ends
     int count = rule.n;
@@ -468,6 +526,7 @@ private:
   long largest_path_work_ = 0;  // the costliest path so far: one more like it must fit the budget
   double path_tol_, bound_, delta_;
   double narrow_ = 0.0;  // an interval narrower than this takes the 7-point rule (kNarrowWidth)
+  const AcrossRule* whole_ = nullptr;  // the whole patch's rule where it is not kronrod15() (jacobiAcross)
   bool continuous_ = false;  // the integrand is continuous across the paths (SlidingLaw::Coulomb)
   std::array<Interval, kMaxIntervals> iv_;
   Interval pool_{};  // the intervals beyond kMaxIntervals (push)

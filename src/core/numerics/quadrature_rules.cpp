@@ -147,4 +147,72 @@ const std::array<double, 7>& kronrod7Complement()
   return weights;
 }
 
+namespace
+{
+// The non-negative halves of jacobiKronrod's rules, n = 3 ... 6: nodes, Kronrod, Gauss and complement weights (the
+// node 0 once). Computed from the moments of (1 - y^2)^(3/2), B((k + 1) / 2, 5 / 2) for even k, in 60-digit arithmetic:
+// the Gauss nodes as the roots of the weight's orthogonal polynomial p_n, the Kronrod-only ones as those of Stieltjes'
+// polynomial E_{n+1} (orthogonal to every polynomial of degree <= n against the weight times p_n), every weight as the
+// interpolatory rule's on its nodes.
+struct JacobiHalf
+{
+  int n;
+  double y[7], wk[7], wg[7], wr[7];
+};
+constexpr JacobiHalf kJacobiHalves[] = {
+  { 3,
+    { 0.0, 3.06460526793770390739e-1, 6.12372435695794524549e-1, 8.59892597276321523378e-1 },
+    { 3.01069295969021852019e-1, 2.70062794683556341157e-1, 1.4199288829784376219e-1, 2.64582915821752028548e-2 },
+    { 6.54498469497873591346e-1, 0.0, 2.61799387799149436539e-1, 0.0 },
+    { 0.0, 5.22661861797558785309e-1, 0.0, 6.63867607505274469023e-2 } },
+  { 4,
+    { 0.0, 2.66216481931919458815e-1, 5.08991766267433496151e-1, 7.27412389740367290322e-1, 9.01307912591767818167e-1 },
+    { 2.72112697015479565857e-1, 2.28985893372165430771e-1, 1.47391317802340905405e-1, 6.52391337758635128186e-2,
+      1.13759290899766002885e-2 },
+    { 0.0, 4.65912241485857500436e-1, 0.0, 1.23136381062228731775e-1, 0.0 },
+    { 5.28358764467374317378e-1, 0.0, 2.99547592441534711687e-1, 0.0, 2.5321647872864361836e-2 } },
+  { 5,
+    { 0.0, 2.34863400647613934802e-1, 4.42930458136057122056e-1, 6.28790741059521586815e-1, 7.98214220988774342785e-1,
+      9.28418756270065911893e-1 },
+    { 2.40549437490776917339e-1, 2.05732526710232134528e-1, 1.39474307878100602807e-1, 8.45869668631197623581e-2,
+      3.3715904186755540404e-2, 5.26419816448973344537e-3 },
+    { 4.58148928648511513942e-1, 0.0, 2.97491234438742284635e-1, 0.0, 6.24829237850881906051e-2, 0.0 },
+    { 0.0, 4.15773608786535906228e-1, 0.0, 1.58848305295246752148e-1, 0.0, 1.44267084663035738359e-2 } },
+  { 6,
+    { 0.0, 1.98187323325468024897e-1, 3.91036502198764761015e-1, 5.64399481003359485011e-1, 7.14189794978777699687e-1,
+      8.44750603518456376201e-1, 9.44763963247901657283e-1 },
+    { 1.98314245306752553856e-1, 1.85909965960527187764e-1, 1.44577390051900729567e-1, 9.0303327526018338084e-2,
+      4.81946805876185573079e-2, 1.81222360755524945102e-2, 2.78389969309264805006e-3 },
+    { 0.0, 3.68444376374489365679e-1, 0.0, 1.86608725297401668319e-1, 0.0, 3.39955208761951982146e-2, 0.0 },
+    { 4.05515000005394339663e-1, 0.0, 2.83822607231588301335e-1, 0.0, 9.59072297085580852467e-2, 0.0,
+      6.56128560524267579893e-3 } },
+};
+
+JacobiKronrod unfold(const JacobiHalf& h)
+{
+  JacobiKronrod r;
+  r.n = h.n;
+  r.size = 2 * h.n + 1;
+  for (int i = 0; i <= h.n; ++i)
+  {
+    const int up = h.n + i, down = h.n - i;
+    r.y[up] = h.y[i];
+    r.y[down] = -h.y[i];
+    r.wk[up] = r.wk[down] = h.wk[i];
+    r.wg[up] = r.wg[down] = h.wg[i];
+    r.wr[up] = r.wr[down] = h.wr[i];
+  }
+  return r;
+}
+}  // namespace
+
+const JacobiKronrod& jacobiKronrod(int n)
+{
+  static const std::array<JacobiKronrod, 4> rules = { unfold(kJacobiHalves[0]), unfold(kJacobiHalves[1]),
+                                                      unfold(kJacobiHalves[2]), unfold(kJacobiHalves[3]) };
+  if (n < JacobiKronrod::kMinPoints || n > JacobiKronrod::kMaxPoints)
+    throw std::invalid_argument("jacobiKronrod: number of Gauss points out of range");
+  return rules[n - JacobiKronrod::kMinPoints];
+}
+
 }  // namespace sphere_contact_estimator::numerics

@@ -44,4 +44,21 @@ const GaussKronrod7& gaussKronrod7();
 /// kronrodComplement.
 const std::array<double, 7>& kronrod7Complement();
 
+/// Gauss-Kronrod pairs for the weight (1 - y^2)^(3/2) on [-1, 1] (Jacobi's, alpha = beta = 3/2): the n-point Gauss rule of
+/// that weight (exact to degree 2n - 1) embedded in Kronrod's extension of it to 2n + 1 nodes (exact to degree 3n + 1),
+/// and the interpolatory rule of the same weight on the n + 1 Kronrod-only nodes (exact to degree n): nodes y ascending,
+/// wk, wg (0 at the Kronrod-only nodes), wr (0 at the Gauss ones), as GaussKronrod15 and kronrodComplement. Kronrod's
+/// extension exists for this weight (Gegenbauer's with lambda = 2) with real nodes inside (-1, 1) and positive weights.
+struct JacobiKronrod
+{
+  static constexpr int kMinPoints = 3, kMaxPoints = 6;  // n
+  int n = 0;
+  int size = 0;  // 2n + 1
+  std::array<double, 2 * kMaxPoints + 1> y{}, wk{}, wg{}, wr{};
+};
+
+/// The pair with n Gauss points, kMinPoints <= n <= kMaxPoints (nodes and weights to 21 digits, computed from the
+/// weight's moments in 60-digit arithmetic; test QuadratureRules.JacobiKronrodIsExactForItsWeight).
+const JacobiKronrod& jacobiKronrod(int n);
+
 }  // namespace sphere_contact_estimator::numerics
