@@ -147,6 +147,9 @@ AcrossRule jacobiAcross(int n)
 // estimate wherever the pair served (2000 random points of the Fig. 4 envelope per law, docs/models.md), and the
 // estimate above the error at every comparison of model_accuracy --sweep under both laws.
 constexpr double kJacobiTolerance = 5e-4;
+// The Gauss rule's difference to its Kronrod rule against rho^(-2n) (jacobiRule's pole test): 1.2-4.1 over the Fig. 4
+// set's points of one structure at n = 3, 4.
+constexpr double kJacobiScale = 4.0;
 constexpr double kJacobiRatio = 3.5;
 
 const AcrossRule& jacobiRule(int n)
@@ -213,14 +216,16 @@ public:
       int n = numerics::JacobiKronrod::kMinPoints;
       for (double t = kJacobiTolerance; tolerance < t; t /= kJacobiRatio)
         ++n;
-      whole_ = &jacobiRule(n);
-      // The pair's estimate leaves most of a tight tolerance to the paths (its median over the Fig. 4 set at 1e-4 of
-      // mu F_z: 9e-6 of the patch integrals against 1.6e-4), so the loose share serves for every path there. At 1e-4:
-      // Fig. 4's work 3.80 M -> 2.81 M; with 0.3 for the pair's own paths and 0.05 for the rest 3.57 M, and 43.5 M
-      // against 33.9 M over 600 random points of the envelope (where the pair's estimate misses, the halves' paths are
-      // the work).
-      if (continuous_)
-        path_tol_ = std::max(path_tol_, kCoulombLoosePathShare * tolerance);
+      // R's nearest singularity is the spin pole (the drive's direction turns about it): an n-point Gauss rule's error
+      // falls as rho^(-2n), rho = r + sqrt(r^2 - 1) the Bernstein ellipse through a pole at r patch radii. Where that
+      // leaves the estimate above half the tolerance, the pair would miss and cost its paths on top of the halves' (at
+      // the skid of data/manoeuvre.bag, whose sigma points put the pole 1.2-1.5 radii out, the halves took 39-41 paths
+      // where the 15-point rule took 17; with the test, 400 such points took 2.11 M units against 2.85 M before the pairs).
+      const double r = field.phi != 0.0 ? std::abs(field.pole()) : INFINITY;
+      const double rho = r + std::sqrt(std::max(0.0, r * r - 1.0));
+      if (kJacobiScale * std::pow(rho, -2.0 * n) <= 0.5 * tolerance)
+        whole_ = &jacobiRule(n);
+      whole_path_tol_ = continuous_ ? std::max(path_tol_, kCoulombLoosePathShare * tolerance) : path_tol_;
     }
   }
 
@@ -228,6 +233,14 @@ public:
   {
     double cuts[16];
     const int nc = structureBreakpoints(f_, cuts, 16);
+    // A patch the whole of which a Jacobi pair takes: the pair's estimate leaves most of a tight tolerance to the paths
+    // (its median over the Fig. 4 set at 1e-4 of mu F_z: 9e-6 of the patch integrals against 1.6e-4), so the loose
+    // share serves for every path, the halves' too where the pair's estimate misses: at 1e-4 the Fig. 4 set's median
+    // work 10 652 -> 7 096 units (largest error 3.3e-6 of mu F_z either way). Not where the patch is cut (a spin pole in
+    // it): there the 15-point rules' estimates leave no such room, and the loose share split them further (the pivot of
+    // data/manoeuvre.bag: 2.7x the work).
+    if (whole_ && nc == 0)
+      path_tol_ = whole_path_tol_;
     double from = -half_pi;
     for (int i = 0; i <= nc; ++i)
     {
@@ -535,6 +548,7 @@ private:
   double path_tol_, bound_, delta_;
   double narrow_ = 0.0;  // an interval narrower than this takes the 7-point rule (kNarrowWidth)
   const AcrossRule* whole_ = nullptr;  // the whole patch's rule where it is not kronrod15() (jacobiAcross)
+  double whole_path_tol_ = 0.0;        // the paths' tolerance where it serves (kCoulombLoosePathShare)
   bool continuous_ = false;  // the integrand is continuous across the paths (SlidingLaw::Coulomb)
   std::array<Interval, kMaxIntervals> iv_;
   Interval pool_{};  // the intervals beyond kMaxIntervals (push)
