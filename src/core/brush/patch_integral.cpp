@@ -147,10 +147,10 @@ AcrossRule jacobiAcross(int n)
 // estimate wherever the pair served (2000 random points of the Fig. 4 envelope per law, docs/models.md), and the
 // estimate above the error at every comparison of model_accuracy --sweep under both laws.
 constexpr double kJacobiTolerance = 5e-4;
-// The Gauss rule's difference to its Kronrod rule against rho^(-2n) (jacobiRule's pole test): 1.2-4.1 over the Fig. 4
-// set's points of one structure at n = 3, 4.
-constexpr double kJacobiScale = 4.0;
 constexpr double kJacobiRatio = 3.5;
+// The Gauss rule's difference to its Kronrod rule against rho^(-2n) (the Integrator's pole test): 1.2-4.1 over the
+// Fig. 4 set's points of one structure at n = 3, 4.
+constexpr double kJacobiScale = 4.0;
 
 const AcrossRule& jacobiRule(int n)
 {
@@ -225,7 +225,6 @@ public:
       const double rho = r + std::sqrt(std::max(0.0, r * r - 1.0));
       if (kJacobiScale * std::pow(rho, -2.0 * n) <= 0.5 * tolerance)
         whole_ = &jacobiRule(n);
-      whole_path_tol_ = continuous_ ? std::max(path_tol_, kCoulombLoosePathShare * tolerance) : path_tol_;
     }
   }
 
@@ -239,8 +238,8 @@ public:
     // work 10 652 -> 7 096 units (largest error 3.3e-6 of mu F_z either way). Not where the patch is cut (a spin pole in
     // it): there the 15-point rules' estimates leave no such room, and the loose share split them further (the pivot of
     // data/manoeuvre.bag: 2.7x the work).
-    if (whole_ && nc == 0)
-      path_tol_ = whole_path_tol_;
+    if (whole_ && nc == 0 && continuous_)
+      path_tol_ = std::max(path_tol_, kCoulombLoosePathShare * tol_);
     double from = -half_pi;
     for (int i = 0; i <= nc; ++i)
     {
@@ -548,7 +547,6 @@ private:
   double path_tol_, bound_, delta_;
   double narrow_ = 0.0;  // an interval narrower than this takes the 7-point rule (kNarrowWidth)
   const AcrossRule* whole_ = nullptr;  // the whole patch's rule where it is not kronrod15() (jacobiAcross)
-  double whole_path_tol_ = 0.0;        // the paths' tolerance where it serves (kCoulombLoosePathShare)
   bool continuous_ = false;  // the integrand is continuous across the paths (SlidingLaw::Coulomb)
   std::array<Interval, kMaxIntervals> iv_;
   Interval pool_{};  // the intervals beyond kMaxIntervals (push)

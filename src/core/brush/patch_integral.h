@@ -28,10 +28,9 @@ struct PatchIntegral
 /// three integrals). Across the paths, theta in (-pi/2, pi/2) (y0 = sin theta), by 15-point Gauss-Kronrod
 /// rules on sub-intervals (7-point ones on those narrow enough for the tolerance: kNarrowWidth; under the parabolic
 /// pressure the whole patch, where the load goes as cos^4 theta, by the Gauss-Kronrod pairs of that weight in y0 with
-/// 7-11 nodes, jacobiAcross): split first at
-/// the path through the spin pole, where the sliding direction reverses, and where G's extent changes
-/// (structureBreakpoints), each such interval probed just inside its ends for a band of other structure beside them; then wherever two samples of a rule see a different event structure
-/// along their paths (signatures differ, or the onset's fold changes sign: PathIntegrals::fold), located by
+/// 7-11 nodes, jacobiAcross): split first at the path through the spin pole, where the sliding direction reverses, and
+/// where G's extent changes (structureBreakpoints), each such interval probed just inside its ends for a band of other
+/// structure beside them; then wherever two samples of a rule see a different event structure along their paths (signatures differ, or the onset's fold changes sign: PathIntegrals::fold), located by
 /// bisection on the structure, so that no rule straddles a change of structure; then the sub-interval with
 /// the largest error estimate is halved until the sum meets the tolerance. The estimate is |Kronrod - Gauss|
 /// where a third, lower-degree rule on the same samples shows the rules converging, and twice the largest of the three
