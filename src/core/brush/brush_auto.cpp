@@ -296,8 +296,10 @@ BrushAuto::SteadyCheck BrushAuto::checkSteady(const Slips& s, const Eigen::Vecto
   if (in_transient_ && have_check_ && !c.renewed && lag_travel_ + s.V_r * dt < stride * p_.a)
   {
     lag_travel_ += s.V_r * dt;
-    c.steady = c.steady && last_check_.steady;
     c.lag = last_check_.lag;
+    // the target may have fallen since that check (it follows the inputs' noise): the lag must still leave the steady
+    // family most of it, or the steady solver would be asked for target - lag <= 0
+    c.steady = c.steady && last_check_.steady && c.lag <= 0.5 * target;
     return c;
   }
   const double travel = s.V_r * dt + lag_travel_;
