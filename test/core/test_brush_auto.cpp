@@ -418,7 +418,9 @@ TEST(BrushAuto, ANoiseThatFallsBetweenLagChecksKeepsTheTargetPositive)
           << "noise falling at message " << fall << ", message " << i;
       ASSERT_TRUE(std::isfinite(f.F_x) && std::isfinite(f.F_y) && std::isfinite(f.M_z) && std::isfinite(f.error_estimate));
       if (f.error_estimate > model.lastTarget())
+      {
         EXPECT_TRUE(f.flags & brush_flags::kAccuracyNotMet) << "noise falling at message " << fall << ", message " << i;
+      }
       transient += model.lastModel() == BrushModelKind::Transient;
     }
   }

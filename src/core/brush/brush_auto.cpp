@@ -292,14 +292,14 @@ BrushAuto::SteadyCheck BrushAuto::checkSteady(const Slips& s, const Eigen::Vecto
   // In the transient model the lag only decides when to leave it, which takes steady conditions held over a transit:
   // it is evaluated once the patch has rolled a quarter of its radius since the last time (the lag then takes the
   // changes and the travel since at once), not at every message of a fast stream.
-  const double stride = have_check_ && last_check_.lag > kFarLag * 0.5 * target ? kFarLagStride : kLagStride;
+  const double stride = have_check_ && last_check_.lag > kFarLag * kLeavingLag * target ? kFarLagStride : kLagStride;
   if (in_transient_ && have_check_ && !c.renewed && lag_travel_ + s.V_r * dt < stride * p_.a)
   {
     lag_travel_ += s.V_r * dt;
     c.lag = last_check_.lag;
     // the target may have fallen since that check (it follows the inputs' noise): the lag must still leave the steady
     // family most of it, or the steady solver would be asked for target - lag <= 0
-    c.steady = c.steady && last_check_.steady && c.lag <= 0.5 * target;
+    c.steady = c.steady && last_check_.steady && c.lag <= kLeavingLag * target;
     return c;
   }
   const double travel = s.V_r * dt + lag_travel_;
@@ -314,7 +314,7 @@ BrushAuto::SteadyCheck BrushAuto::checkSteady(const Slips& s, const Eigen::Vecto
     stretch = a_phi_gamma < 1.0 ? std::asin(a_phi_gamma) / a_phi_gamma : 0.5 * boost::math::double_constants::pi;
   stepLag(s, sigma, frame, target, c.steady, travel / stretch);
   c.lag = limit > 0.0 ? lag_->lag() / limit : 0.0;
-  if (!(c.lag <= 0.5 * target))
+  if (!(c.lag <= kLeavingLag * target))
     c.steady = false;
   last_check_ = c;
   have_check_ = true;

@@ -265,9 +265,9 @@ public:
     }
     // a split costs two rules (30 paths) and whatever changes of structure they locate: stop before a split the
     // budget cannot finish, so that the answer is the last complete one, not one with unsolved paths in it
+    path_tol_ = split_tol;
     while (estimate() > tol_ && work_ + 4 * 30 * averagePathWork() <= max_work_ && n_ + 2 * kMaxGaps < kMaxIntervals)
     {
-      path_tol_ = split_tol;
       int worst = -1;
       double p = 0.0;
       for (int i = 0; i < n_; ++i)

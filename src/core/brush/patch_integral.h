@@ -30,12 +30,13 @@ struct PatchIntegral
 /// pressure the whole patch, where the load goes as cos^4 theta, by the Gauss-Kronrod pairs of that weight in y0 with
 /// 7-11 nodes, jacobiAcross): split first at the path through the spin pole, where the sliding direction reverses, and
 /// where G's extent changes (structureBreakpoints), each such interval probed just inside its ends for a band of other
-/// structure beside them; then wherever two samples of a rule see a different event structure along their paths (signatures differ, or the onset's fold changes sign: PathIntegrals::fold), located by
-/// bisection on the structure, so that no rule straddles a change of structure; then the sub-interval with
-/// the largest error estimate is halved until the sum meets the tolerance. The estimate is |Kronrod - Gauss|
-/// where a third, lower-degree rule on the same samples shows the rules converging, and twice the largest of the three
-/// differences where it does not. The along-path quadrature's own bound (solvePath) is added. Every bound on an unresolved piece uses the field's own bound on
-/// |u| (BristleField::deflectionBound), so tiny slips converge at once. Stops, unconverged, when the paths' work
+/// structure beside them; then wherever two samples of a rule see a different event structure along their paths
+/// (signatures differ, or the onset's fold changes sign: PathIntegrals::fold), located by bisection on the structure,
+/// so that no rule straddles a change of structure; then the sub-interval with the largest error estimate is halved
+/// until the sum meets the tolerance. The estimate is |Kronrod - Gauss| where a third, lower-degree rule on the same
+/// samples shows the rules converging, and twice the largest of the three differences where it does not. The
+/// along-path quadrature's own bound (solvePath) is added. Every bound on an unresolved piece uses the field's own
+/// bound on |u| (BristleField::deflectionBound), so tiny slips converge at once. Stops, unconverged, when the paths' work
 /// reaches `max_work`: the paths left unsolved and the intervals left unrefined are bounded, never guessed. `stepper`:
 /// how eq. (4b)'s sliding pieces are stepped (solvePath).
 PatchIntegral integratePatch(const BristleField& field, double tolerance, long max_work,

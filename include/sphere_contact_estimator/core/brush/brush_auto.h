@@ -96,6 +96,8 @@ private:
   SteadyCheck last_check_;   // the last evaluated check, and the travel since (in the transient model)
   bool have_check_ = false;
   double lag_travel_ = 0.0;
+  // The lag that leaving the transient model allows, a share of the target: the steady family then has the rest
+  static constexpr double kLeavingLag = 0.5;
   static constexpr double kLagStride = 0.25;  // of the patch radius: how far the transient rolls between lag checks
   // Where the last check's lag was kFarLag times what leaving allows, the next waits a transit (2a, after which no change
   // is remembered): a lag that large falls under the limit sooner only where new changes cancel it (the slowest kernel

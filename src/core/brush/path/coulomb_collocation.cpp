@@ -366,12 +366,12 @@ bool Collocation::run(const SlideStart& start, SlideEnd& end, SlideStart& resume
     // of the tolerance; otherwise e^-4 (only the cost depends on the choice: the offset's bound is carried and added
     // to the estimate either way)
     double inset = kInset;
-    s = std::log(tau0 * inset / (L - tau0 * inset));
+    s = map_.of(tau0 * inset);
     Point p = at(s);
     if (2.0 * dmax * inset * carried(s, p.ratio * p.w_abs) > kStartShare * tol)
     {
       inset = kDeepInset;
-      s = std::log(tau0 * inset / (L - tau0 * inset));
+      s = map_.of(tau0 * inset);
       p = at(s);
     }
     tau0 *= inset;
