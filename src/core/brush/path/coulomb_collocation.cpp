@@ -145,6 +145,7 @@ public:
     , straight_(ctx.field.omega == 0.0)
     , exit_(ctx.path.position(ctx.path.length))
     , exit_velocity_(cd(-1.0, 0.0) + timesI(ctx.field.omega, exit_))
+    , f_mid_(boundAt(0.5 * ctx.path.length))
   {
   }
 
@@ -212,7 +213,7 @@ private:
   // straight path; on an arc near it) and g = L e^s / (1 + e^s)^2 at most min(L e^s, L / 4), in closed form.
   double carried(double s0, double W) const
   {
-    const double f_peak = boundAt(0.5 * p_.length), L = p_.length;
+    const double f_peak = f_mid_, L = p_.length;
     const double s1 = -1.3862943611198906;  // ln(1/4): where L e^s meets L / 4
     if (!(W > 0.0))
       return INFINITY;
@@ -285,6 +286,7 @@ private:
   TravelMap map_;
   bool straight_;
   cd exit_, exit_velocity_;  // the trailing edge's point and velocity
+  double f_mid_;             // the bound mid-path, where it peaks
 };
 
 bool Collocation::collocate(const Riccati* R, double step, const double* guess, double* T) const
@@ -628,7 +630,10 @@ bool Collocation::run(const SlideStart& start, SlideEnd& end, SlideStart& resume
     const double travel = P[2].tau - p0.tau;
     const double after = std::min(std::max(L - P[2].tau, 0.0), pull > 0.0 ? P[1].g / pull : INFINITY);
     // the bound over the step and the travel after it (it peaks mid-path)
-    const double f_max = std::max({ p0.f, P[0].f, P[1].f, P[2].f, boundAt(std::clamp(0.5 * L, P[2].tau, P[2].tau + after)) });
+    // (its value mid-path is the path's constant; at the step's end it is P[2].f)
+    const double tau_f = std::clamp(0.5 * L, P[2].tau, P[2].tau + after);
+    const double f_after = tau_f == P[2].tau ? P[2].f : tau_f == 0.5 * L ? f_mid_ : boundAt(tau_f);
+    const double f_max = std::max({ p0.f, P[0].f, P[1].f, P[2].f, f_after });
     double quad_err = 0.0;
     const auto overOf = [&](double e_t) {
       quad_err = quadErr(e_t);
