@@ -153,9 +153,28 @@ void ContactEstimatorRos::odometryCallback(const ros::MessageEvent<nav_msgs::Odo
     last_received_ = ros::WallTime::now();  // wall time: a paused /clock must not freeze the age
   }
   std::lock_guard<std::mutex> lock(mutex_);
+  // An exception here is a defect (the models' own are caught by the estimator, which flags the estimate): logged and
+  // counted, the message unanswered, instead of ending the node (or, in a nodelet manager, every nodelet in it).
+  try
+  {
+    process(msg, event.getPublisherName());
+  }
+  catch (const std::exception& error)
+  {
+    ROS_ERROR_THROTTLE(5.0, "contact estimator: processing an odometry message failed: %s (a defect: please report it "
+                            "with the bag); message unanswered",
+                       error.what());
+    std::lock_guard<std::mutex> stats(stats_mutex_);
+    ++faults_;
+    last_fault_ = std::string("processing a message threw: ") + error.what();
+  }
+}
+
+void ContactEstimatorRos::process(const nav_msgs::Odometry& msg, const std::string& publisher)
+{
   SkipReason reason;
   // the publisher's name: header.seq counts per publisher (a gap is a lost message)
-  const EstimateOutputs* out = estimator_.process(msg, tf_buffer_, reason, event.getPublisherName());
+  const EstimateOutputs* out = estimator_.process(msg, tf_buffer_, reason, publisher);
   if (!out)
   {
     if (reason == SkipReason::NoOrientation)
@@ -179,6 +198,13 @@ void ContactEstimatorRos::odometryCallback(const ros::MessageEvent<nav_msgs::Odo
                             "roll (V_r %.2f m/s): is twist.angular the body's yaw rate? It must be the angular velocity "
                             "of the sphere's shell (README: Your robot)",
                       std::hypot(msg.twist.twist.linear.x, msg.twist.twist.linear.y), kNotRollingTime, e.rolling_speed);
+  const ContactEstimator& core = estimator_.estimator();
+  const bool faulted =
+      (e.brush.flags & brush_flags::kModelFault) || (e.rolling_resistance.flags & cylinder_flags::kModelFault);
+  if (faulted)
+    ROS_ERROR_THROTTLE(5.0, "contact estimator: %s (a defect: please report it with the bag); the estimate is published "
+                            "invalid with BRUSH_FLAG_MODEL_FAULT / FLAG_MODEL_FAULT, the model's state reset",
+                       core.lastFault().c_str());
   if (out->estimate.messages_dropped > 0)
     ROS_WARN_THROTTLE(5.0, "contact estimator: %u odometry messages missing before this one (a gap in header.seq: the "
                            "queue overflowed, or the source lost them)",
@@ -216,6 +242,11 @@ void ContactEstimatorRos::odometryCallback(const ros::MessageEvent<nav_msgs::Odo
   if (last_tf_error_ != estimator_.lastTfError())
     last_tf_error_.assign(estimator_.lastTfError());  // into its capacity: no allocation once sized
   last_covariance_problem_ = estimator_.lastCovarianceProblem();
+  if (faulted)
+  {
+    ++faults_;
+    last_fault_ = core.lastFault();
+  }
 }
 
 void ContactEstimatorRos::snapshot()
@@ -327,7 +358,7 @@ void ContactEstimatorRos::diagnoseTf(diagnostic_updater::DiagnosticStatusWrapper
 void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWrapper& status)
 {
   std::lock_guard<std::mutex> lock(stats_mutex_);
-  if (!have_estimate_)
+  if (!have_estimate_ && faults_ == reported_faults_)
   {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "no estimate yet");
     return;
@@ -343,6 +374,7 @@ void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWra
   note(last_brush_flags_ & brush_flags::kNoSteadyStateTilt, "|R_gamma| < a: no steady state");
   note(last_brush_flags_ & brush_flags::kStandstill, "standstill: steady brush model undefined");
   note(last_brush_flags_ & brush_flags::kLinearSaturated, "linear brush model saturated");
+  status.add("model faults (in all)", faults_);
   status.add("brush flags", last_brush_flags_);
   status.add("rolling-resistance flags", last_rr_flags_);
   status.add("estimate flags", last_flags_);
@@ -357,6 +389,16 @@ void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWra
              std::to_string(since_report_) + " estimates (their brush forces are the response to that noise)";
   within_noise_ = 0;
   since_report_ = 0;
+  if (faults_ > reported_faults_)
+  {
+    // a defect: ERROR whatever else holds, until a report without a new one
+    const std::string text = std::to_string(faults_ - reported_faults_) + " estimates without forces since the last " +
+                             "report: a model failed (" + last_fault_ + "; please report it with the bag)";
+    reported_faults_ = faults_;
+    status.add("last fault", last_fault_);
+    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, problems.empty() ? text : text + "; " + problems);
+    return;
+  }
   if (problems.empty())
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, parked.empty() ? "models valid" : "models valid; " + parked);
   else

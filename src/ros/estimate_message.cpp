@@ -20,7 +20,8 @@ static_assert(ContactEstimate::BRUSH_FLAG_STANDSTILL == brush_flags::kStandstill
               ContactEstimate::BRUSH_FLAG_NO_STEADY_STATE_TILT == brush_flags::kNoSteadyStateTilt &&
               ContactEstimate::BRUSH_FLAG_LINEAR_SATURATED == brush_flags::kLinearSaturated &&
               ContactEstimate::BRUSH_FLAG_SUBSTEPS_TRUNCATED == brush_flags::kSubstepsTruncated &&
-              ContactEstimate::BRUSH_FLAG_ACCURACY_NOT_MET == brush_flags::kAccuracyNotMet);
+              ContactEstimate::BRUSH_FLAG_ACCURACY_NOT_MET == brush_flags::kAccuracyNotMet &&
+              ContactEstimate::BRUSH_FLAG_MODEL_FAULT == brush_flags::kModelFault);
 static_assert(ContactEstimate::BRUSH_OFF == static_cast<int>(BrushModelKind::Off) &&
               ContactEstimate::BRUSH_LINEAR == static_cast<int>(BrushModelKind::Linear) &&
               ContactEstimate::BRUSH_STEADY == static_cast<int>(BrushModelKind::Steady) &&
@@ -34,7 +35,8 @@ static_assert(RollingResistance::FLAG_UNDERDAMPED == cylinder_flags::kUnderdampe
               RollingResistance::FLAG_EXPANSION_OUT_OF_RANGE == cylinder_flags::kExpansionOutOfRange &&
               RollingResistance::FLAG_LARGE_DEFORMATION == cylinder_flags::kLargeDeformation &&
               RollingResistance::FLAG_TABLE_FALLBACK == cylinder_flags::kTableFallback &&
-                  RollingResistance::FLAG_ROOT_NOT_CONVERGED == cylinder_flags::kRootNotConverged);
+                  RollingResistance::FLAG_ROOT_NOT_CONVERGED == cylinder_flags::kRootNotConverged &&
+              RollingResistance::FLAG_MODEL_FAULT == cylinder_flags::kModelFault);
 static_assert(RollingResistance::REGIME_STATIC == static_cast<int>(CylinderRegime::Static) &&
               RollingResistance::REGIME_CONTACT_PATCH == static_cast<int>(CylinderRegime::ContactPatch) &&
               RollingResistance::REGIME_POINT_CONTACT == static_cast<int>(CylinderRegime::PointContact) &&

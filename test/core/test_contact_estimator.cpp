@@ -4,7 +4,9 @@
 // STL
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <random>
+#include <stdexcept>
 
 // GTest
 #include <gtest/gtest.h>
@@ -432,6 +434,75 @@ TEST(ContactEstimator, BadInputChangesNothing)
   ASSERT_TRUE(d);
   EXPECT_NEAR(d->dt, 0.01, 1e-12);  // the rejected messages did not advance time
   EXPECT_LE(d->brush.F_x, before);
+}
+
+// A real model that throws at one chosen update, and counts its resets: a defect the estimator must survive.
+class FaultyModel : public BrushModel
+{
+public:
+  FaultyModel(const BrushParameters& p, int throw_at)
+    : BrushModel(p), inner_(makeBrushModel(BrushModelKind::Transient, p)), throw_at_(throw_at)
+  {
+  }
+  BrushForces update(const ContactKinematics& k, double dt) override
+  {
+    if (calls_++ == throw_at_)
+      throw std::logic_error("a defect planted by the test");
+    return inner_->update(k, dt);
+  }
+  void reset() override
+  {
+    ++resets_;
+    inner_->reset();
+  }
+  BrushModelKind kind() const override { return BrushModelKind::Transient; }
+  int calls_ = 0, resets_ = 0;
+
+private:
+  std::unique_ptr<BrushModel> inner_;
+  int throw_at_;
+};
+
+TEST(ContactEstimator, AModelThatThrowsIsFlaggedResetAndTheStreamGoesOn)
+{
+  const EstimatorSettings s = settings(BrushModelKind::Transient);
+  ContactEstimator e(s);
+  auto model = std::make_unique<FaultyModel>(s.brushParameters(), 5);
+  FaultyModel* faulty = model.get();
+  e.useBrushModel(std::move(model));
+  for (int i = 0; i < 10; ++i)
+  {
+    const ContactEstimateData* d = e.update(rolling(0.01 * i, 1.0, 0.0, 0.05, 0.01, 2.0));
+    ASSERT_TRUE(d) << i;  // every message answered: nothing escapes update()
+    if (i == 5)
+    {
+      EXPECT_TRUE(d->brush.flags & brush_flags::kModelFault);
+      EXPECT_FALSE(d->valid());
+      EXPECT_EQ(d->brush.F_x, 0.0);
+      EXPECT_EQ(d->brush.F_y, 0.0);
+      EXPECT_EQ(d->brush_power, 0.0);
+      EXPECT_EQ(d->brush_model, BrushModelKind::Transient);
+      EXPECT_EQ(d->covariance.status, CovarianceStatus::Undefined);
+      EXPECT_EQ(faulty->resets_, 1);  // its state, which the throw may have left half-updated, is forgotten
+      EXPECT_TRUE(d->rolling_resistance.valid());  // the other model is not touched
+    }
+    else
+    {
+      EXPECT_FALSE(d->brush.flags & brush_flags::kModelFault) << i;
+      EXPECT_TRUE(d->valid()) << i;
+      if (i > 0)  // (the first message advances nothing)
+      {
+        EXPECT_GT(std::abs(d->brush.F_x), 0.0) << i;  // the messages after it answered again
+      }
+    }
+  }
+  EXPECT_EQ(e.faults(), 1u);
+  EXPECT_NE(e.lastFault().find("a defect planted by the test"), std::string::npos) << e.lastFault();
+  EXPECT_NE(e.lastFault().find("brush model"), std::string::npos) << e.lastFault();
+  // and the flag's sentence says what to do
+  const auto text = brush_flags::describe(brush_flags::kModelFault);
+  ASSERT_EQ(text.size(), 1u);
+  EXPECT_NE(text[0].find("report"), std::string::npos);
 }
 
 TEST(ContactEstimator, ConfigureKeepsOrRejects)

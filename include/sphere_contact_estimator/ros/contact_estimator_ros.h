@@ -54,6 +54,7 @@ public:
 
 private:
   void odometryCallback(const ros::MessageEvent<nav_msgs::Odometry const>& event);
+  void process(const nav_msgs::Odometry& msg, const std::string& publisher);  // the callback's work, under mutex_
   // what the diagnostics read, copied after each update and configuration (under stats_mutex_)
   void snapshot();
   void reconfigureCallback(ContactEstimatorConfig& config, uint32_t level);
@@ -124,6 +125,10 @@ private:
   std::uint64_t over_spread_ = 0, reported_bad_covariance_ = 0;
   std::uint64_t within_noise_ = 0, since_report_ = 0;  // estimates flagged kMotionWithinNoise, and all, since the last report
   std::uint64_t not_rolling_ = 0;  // estimates flagged kNotRolling since the last report
+  // models that threw (ContactEstimator::faults) and messages whose processing threw elsewhere, in all and at the last
+  // report, and what the last one said
+  std::uint64_t faults_ = 0, reported_faults_ = 0;
+  std::string last_fault_;
   double last_motion_to_noise_ = -1.0;
   CovarianceStatus last_covariance_status_ = CovarianceStatus::Disabled;
 };

@@ -18,6 +18,8 @@ std::vector<std::string> describe(std::uint32_t flags)
     out.emplace_back("the accuracy target was not met within the evaluation budget: see error_estimate");
   if (flags & kSubstepsTruncated)
     out.emplace_back("transient step longer than the substep budget: integrated with coarser substeps");
+  if (flags & kModelFault)
+    out.emplace_back("the brush model failed (a defect: please report it with the input): no forces, its state reset");
   return out;
 }
 }  // namespace sphere_contact_estimator::brush_flags

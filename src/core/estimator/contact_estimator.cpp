@@ -8,6 +8,7 @@
 // STL
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 // Boost
@@ -138,13 +139,46 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   o.rolling_speed = speed;
   const ContactKinematics kin = contactKinematics(in, psi_dot, o);
   o.work = 0;
-  propagateBrushCovariance(in, speed, o);
-  judgeMotion(in, o);
-  runBrush(kin, o.dt, in.omega.z(), o);
-  runRollingResistance(speed, o);
-  propagateRollingResistanceCovariance(speed, o);
+  // A model that throws has a defect, which no input should reach; one message answered without its forces, flagged,
+  // and the model's state reset, serves a robot better than a node that dies (or a replay that stops) at it.
+  try
+  {
+    propagateBrushCovariance(in, speed, o);
+    judgeMotion(in, o);
+    runBrush(kin, o.dt, in.omega.z(), o);
+  }
+  catch (const std::exception& error)
+  {
+    fault("brush model", error, o);
+    o.covariance = EstimateCovariance{};
+    o.covariance.status = CovarianceStatus::Undefined;
+    clearBrush(o);
+    o.brush.flags = brush_flags::kModelFault;
+    if (brush_)
+      brush_->reset();
+  }
+  try
+  {
+    runRollingResistance(speed, o);
+    propagateRollingResistanceCovariance(speed, o);
+  }
+  catch (const std::exception& error)
+  {
+    fault("rolling-resistance model", error, o);
+    o.rolling_resistance = CylinderState{};
+    o.rolling_resistance.flags = cylinder_flags::kModelFault;
+    o.rolling_resistance_force = o.rolling_resistance_torque = o.rolling_resistance_power = 0.0;
+  }
   o.compute_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return &o;
+}
+
+void ContactEstimator::fault(const char* model, const std::exception& error, const ContactEstimateData& o)
+{
+  ++faults_;
+  char head[96];
+  std::snprintf(head, sizeof head, "%s threw at stamp %.9f: ", model, o.stamp);
+  last_fault_ = std::string(head) + error.what();
 }
 
 double ContactEstimator::advanceClock(double stamp, std::uint32_t& flags)
@@ -244,7 +278,7 @@ ContactKinematics ContactEstimator::contactKinematics(const EstimatorInput& in, 
   return kin;
 }
 
-void ContactEstimator::runBrush(const ContactKinematics& kin, double dt, double omega_z, ContactEstimateData& o)
+void ContactEstimator::clearBrush(ContactEstimateData& o) const
 {
   o.brush_model = settings_.brush_model;
   o.sliding_law = settings_.sliding_law;
@@ -255,6 +289,12 @@ void ContactEstimator::runBrush(const ContactKinematics& kin, double dt, double 
   o.friction = 0.0;
   o.patch_radius = patch_radius_;
   o.load = load_;
+  o.brush_power = 0.0;
+}
+
+void ContactEstimator::runBrush(const ContactKinematics& kin, double dt, double omega_z, ContactEstimateData& o)
+{
+  clearBrush(o);
   if (brush_)
   {
     brush_->setInputSpread(o.covariance.brush_method == CovarianceMethod::None ? 0.0 : o.covariance.brush_spread);

@@ -14,6 +14,8 @@ void RunSummary::add(const ContactEstimateData& e)
     ++invalid_;
   if (e.flags & (estimate_flags::kTimeJumpReset | estimate_flags::kGapReset))
     ++resets_;
+  if ((e.brush.flags & brush_flags::kModelFault) || (e.rolling_resistance.flags & cylinder_flags::kModelFault))
+    ++faults_;
   const auto used = static_cast<std::size_t>(e.brush_model_used);
   if (used < models_used_.size())
     ++models_used_[used];
@@ -65,7 +67,11 @@ std::string RunSummary::report() const
                 100.0 * slidingShareAny(), 100.0 * slidingShareMostly(), peak_force_, peak_utilisation_, peak_bristle_,
                 peak_moment_, peak_rr_, share(models_used_[0]), share(models_used_[1]), share(models_used_[2]),
                 share(models_used_[3]));
-  return buffer;
+  std::string out = buffer;
+  if (faults_ > 0)
+    out += "  MODEL FAULTS          " + std::to_string(faults_) +
+           " estimates without forces: a model threw (a defect: please report it with the bag; the CSV's flags say which)\n";
+  return out;
 }
 
 }  // namespace sphere_contact_estimator

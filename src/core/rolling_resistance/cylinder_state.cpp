@@ -44,6 +44,8 @@ std::vector<std::string> describe(std::uint32_t flags)
   if (flags & kRootNotConverged)
     out.emplace_back("the root of eq. 18 was not found to tolerance within the iteration limit: the state is "
                      "the midpoint of the last bracket");
+  if (flags & kModelFault)
+    out.emplace_back("the rolling-resistance model failed (a defect: please report it with the input): no state");
   return out;
 }
 }  // namespace cylinder_flags

@@ -2,9 +2,11 @@
 
 // STL
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <limits>
 #include <memory>
+#include <string>
 
 // Eigen
 #include <Eigen/Core>
@@ -142,6 +144,16 @@ public:
   /// The brush model (null when off).
   const BrushModel* brushModel() const { return brush_.get(); }
 
+  /// A brush model of the caller's own in place of the configured one (a model under development, a test's), kept
+  /// until a configure() that changes the brush settings. Null: none (as brush_model off).
+  void useBrushModel(std::unique_ptr<BrushModel> model) { brush_ = std::move(model); }
+
+  /// Models that threw since construction: each such estimate carries brush_flags::kModelFault or
+  /// cylinder_flags::kModelFault, zero forces, and the model's state was reset. A defect, never an input's doing
+  /// (inputs are refused or flagged before the models see them); what the last one said, or "".
+  std::uint64_t faults() const { return faults_; }
+  const std::string& lastFault() const { return last_fault_; }
+
   /// Shows the bristles behind the last estimate to visit(x, u, sliding), position x and deflection u in the ROS
   /// contact frame [m]: the transient model's lattice, or the steady model's field at the last slips (none for the
   /// linear model, which has no zones, or when the slips were undefined).
@@ -167,6 +179,7 @@ private:
   void followHeading(const Eigen::Vector2d& V_r, double speed, double body_heading, double dt, bool first,
                      std::uint32_t& flags);
   ContactKinematics contactKinematics(const EstimatorInput& in, double psi_dot, ContactEstimateData& out) const;
+  void clearBrush(ContactEstimateData& out) const;  // no brush answer: the configured model's, zero
   void runBrush(const ContactKinematics& kin, double dt, double omega_z, ContactEstimateData& out);
   void runRollingResistance(double speed, ContactEstimateData& out) const;
   void propagateBrushCovariance(const EstimatorInput& in, double speed, ContactEstimateData& out) const;
@@ -174,6 +187,7 @@ private:
   bool slipsRepresentable(const EstimatorInput& in, const Eigen::Vector2d& V_r, double speed) const;
   void rebuildBrush(const EstimatorSettings& next);
   void rebuildCylinder(const EstimatorSettings& next);
+  void fault(const char* model, const std::exception& error, const ContactEstimateData& o);
 
   EstimatorSettings settings_;
   double patch_radius_ = 0.0, load_ = 0.0;  // of settings_, set by adopt()
@@ -187,6 +201,8 @@ private:
   bool was_rolling_ = false;
   double heading_ = 0.0;
   double turn_rate_ = 0.0;
+  std::uint64_t faults_ = 0;
+  std::string last_fault_;
 };
 
 }  // namespace sphere_contact_estimator

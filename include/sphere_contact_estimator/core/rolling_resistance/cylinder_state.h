@@ -28,8 +28,9 @@ constexpr std::uint32_t kExpansionOutOfRange = 1u << 3;///< small-v expansion's 
 constexpr std::uint32_t kLargeDeformation = 1u << 4;   ///< xi_+ not small against R: eq. 4 is poor
 constexpr std::uint32_t kTableFallback = 1u << 5;      ///< speed outside the table: exact solver used
 constexpr std::uint32_t kRootNotConverged = 1u << 6;   ///< eq. 18's root not found to tolerance in the iterations
-constexpr std::uint32_t kInvalidatingFlags =
-    kUnderdamped | kSelfInconsistent | kNoSteadyState | kExpansionOutOfRange | kLargeDeformation | kRootNotConverged;
+constexpr std::uint32_t kModelFault = 1u << 7;         ///< the model failed (threw: a defect): no state (zero)
+constexpr std::uint32_t kInvalidatingFlags = kUnderdamped | kSelfInconsistent | kNoSteadyState | kExpansionOutOfRange |
+                                             kLargeDeformation | kRootNotConverged | kModelFault;
 
 /// One human-readable sentence per set flag, in bit order.
 std::vector<std::string> describe(std::uint32_t flags);
