@@ -301,7 +301,9 @@ TEST(BrushSteady, ErrorEstimateBoundsTheErrorOnRandomPoints)
             << " k " << q.p.k << " sigma " << q.sigma.transpose() << " phi " << q.phi << " phi_gamma " << q.phi_gamma
             << " phi_psi " << q.phi_psi << " reference flags " << ref.flags << " estimate " << ref.error_estimate;
         if (!flagged)
+        {
           EXPECT_LE(error, target + ref.error_estimate) << "point " << i;
+        }
         EXPECT_LE(ref.error_estimate, 0.1 * target) << "the reference at point " << i;
       }
       std::printf("%s law, target %.0e: largest error %.2e, largest error / estimate %.2f, estimate below the error at "
@@ -455,7 +457,9 @@ TEST(BrushSteady, MirrorSymmetry)
       EXPECT_NEAR(a.M_z, -b.M_z, d * 0.05) << toString(law);
       EXPECT_FALSE((a.flags | b.flags) & brush_flags::kAccuracyNotMet) << toString(law);
       if (law == SlidingLaw::Rigid)
+      {
         EXPECT_NEAR(a.sliding_fraction, b.sliding_fraction, 1e-8);
+      }
     }
   }
 }

@@ -173,7 +173,7 @@ struct BristleAdvance::Along
   double t0, t1, t2;     // t = 1 - r^2 / a^2
 };
 
-BristleAdvance::Point BristleAdvance::at(const Along& p, double tau) const
+inline BristleAdvance::Point BristleAdvance::at(const Along& p, double tau) const
 {
   Point q;
   q.w = p.w + tau * w_dot_;
