@@ -580,6 +580,8 @@ TEST(ContactEstimator, TheWorkBudgetBoundsEveryMessage)
         }
         jacobian += d->covariance.brush_method == CovarianceMethod::Jacobian;
       }
+      // a model's exception is caught and flagged (kModelFault): here it must not happen at all
+      EXPECT_EQ(e.faults(), 0u) << "budget " << budget << " run " << run << ": " << e.lastFault();
     }
   std::printf("work budget: %d messages, %d flagged, %d with the linear Jacobian for the covariance\n", messages,
               flagged, jacobian);

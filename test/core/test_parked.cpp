@@ -113,6 +113,7 @@ TipMotion tipMotionRatios(SlidingLaw law, double rate)
     last.swap(now);
     previous = e;
   }
+  EXPECT_EQ(estimator.faults(), 0u) << estimator.lastFault();
   return worst;
 }
 
@@ -153,6 +154,7 @@ double shareOfJumps(SlidingLaw law, double rate, unsigned seed)
       jumps += (F - last).norm() > 0.5 * muFz;
     last = F;
   }
+  EXPECT_EQ(estimator.faults(), 0u) << estimator.lastFault();  // (a fault's zero forces would hide jumps)
   return static_cast<double>(jumps) / (count - 1);
 }
 
