@@ -141,10 +141,10 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   o.work = 0;
   // A model that throws has a defect, which no input should reach; one message answered without its forces, flagged,
   // and the model's state reset, serves a robot better than a node that dies (or a replay that stops) at it.
+  judgeMotion(in, o);
   try
   {
     propagateBrushCovariance(in, speed, o);
-    judgeMotion(in, o);
     runBrush(kin, o.dt, in.omega.z(), o);
   }
   catch (const std::exception& error)
