@@ -199,8 +199,7 @@ void ContactEstimatorRos::process(const nav_msgs::Odometry& msg, const std::stri
                             "of the sphere's shell (README: Your robot)",
                       std::hypot(msg.twist.twist.linear.x, msg.twist.twist.linear.y), kNotRollingTime, e.rolling_speed);
   const ContactEstimator& core = estimator_.estimator();
-  const bool faulted =
-      (e.brush.flags & brush_flags::kModelFault) || (e.rolling_resistance.flags & cylinder_flags::kModelFault);
+  const bool faulted = e.modelFault();
   if (faulted)
     ROS_ERROR_THROTTLE(5.0, "contact estimator: %s (a defect: please report it with the bag); the estimate is published "
                             "invalid with BRUSH_FLAG_MODEL_FAULT / FLAG_MODEL_FAULT, the model's state reset",

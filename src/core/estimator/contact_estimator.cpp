@@ -33,6 +33,11 @@ bool ContactEstimateData::valid() const
          (rolling_resistance_model == CylinderModelKind::Off || rolling_resistance.valid());
 }
 
+bool ContactEstimateData::modelFault() const
+{
+  return (brush.flags & brush_flags::kModelFault) || (rolling_resistance.flags & cylinder_flags::kModelFault);
+}
+
 ContactEstimator::ContactEstimator(const EstimatorSettings& settings)
 {
   settings.validate();

@@ -14,7 +14,7 @@ void RunSummary::add(const ContactEstimateData& e)
     ++invalid_;
   if (e.flags & (estimate_flags::kTimeJumpReset | estimate_flags::kGapReset))
     ++resets_;
-  if ((e.brush.flags & brush_flags::kModelFault) || (e.rolling_resistance.flags & cylinder_flags::kModelFault))
+  if (e.modelFault())
     ++faults_;
   const auto used = static_cast<std::size_t>(e.brush_model_used);
   if (used < models_used_.size())
@@ -70,7 +70,8 @@ std::string RunSummary::report() const
   std::string out = buffer;
   if (faults_ > 0)
     out += "  MODEL FAULTS          " + std::to_string(faults_) +
-           " estimates without forces: a model threw (a defect: please report it with the bag; the CSV's flags say which)\n";
+           " estimates without forces: a model threw (a defect: please report it with the bag; the CSV's flags say "
+           "which)\n";
   return out;
 }
 

@@ -109,6 +109,8 @@ struct ContactEstimateData
   long work = 0;
 
   bool valid() const;
+  /// A model threw for this estimate (brush_flags::kModelFault or cylinder_flags::kModelFault): a defect.
+  bool modelFault() const;
 };
 
 /// The estimator behind the node, the nodelet and the bag tools: odometry kinematics in, slips, brush
