@@ -959,9 +959,104 @@ int sweep(unsigned seed, int n, sce::SlidingLaw law)
   return below == 0 ? 0 : 1;
 }
 
+// `model_accuracy --robot-histories SEED N [RES [REF]]`: the transient model's estimate at the default robot's
+// parameters (config/contact_estimator.yaml: a = 1 cm, 5 kg, mu = 0.8, k = 2e8 N/m^3, parabolic pressure, no tilt) at
+// resolution RES (32, auto's configured one) against REF (256) on N random noisy histories drawn with SEED, each of 24
+// messages (the last 12 compared): slips and spins from 1e-3 of the envelope to all of it, noise 1e-3 to 1e-1, 0.03-2.5
+// patch radii a message at 1 m/s, a third ending parked. How often the error beyond the reference's own estimate passes
+// the estimate, the largest (error - reference's estimate) / estimate and where. docs/speed_and_accuracy.md's figures:
+// seeds 404 (N = 300), 606 and 707 (N = 400 each).
+int robotHistories(unsigned seed, int n, int resolution, int reference)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> g(0.0, 1.0);
+  int messages = 0, below = 0;
+  double worst = -INFINITY;
+  Json where = nullptr;
+  std::vector<double> ratios;  // estimate / error where the error is well above the reference's estimate
+  for (int h = 0; h < n; ++h)
+  {
+    for (int i = 0; i < 4; ++i)
+      u(rng);  // (the draws of the envelope's a, F_z, mu, k: the same histories as the random points' generator)
+    sce::BrushParameters p;
+    p.a = 0.01, p.F_z = 5.0 * 9.81, p.mu = 0.8, p.k = 2e8;
+    p.pressure = sce::PressureDistribution::Parabolic;
+    p.tilt = false;
+    p.sliding_law = sce::SlidingLaw::Coulomb;
+    p.standstill_speed = 0.05;
+    const double scale = std::pow(10.0, -3.0 * u(rng));
+    const Eigen::Vector2d base = scale * Eigen::Vector2d(0.3 * (2.0 * u(rng) - 1.0), 0.1 * (2.0 * u(rng) - 1.0));
+    const double a_phi = scale * (2.0 * u(rng) - 1.0);
+    const double noise = std::pow(10.0, -3.0 + 2.0 * u(rng));
+    const double dt = std::pow(10.0, -1.5 + 1.9 * u(rng)) * p.a;  // at V_r = 1 m/s
+    const double chi = -0.5 + 2.0 * u(rng);
+    const bool standstill = u(rng) < 0.3;
+    sce::BrushParameters fine = p;
+    p.resolution = resolution;
+    fine.resolution = reference;
+    sce::BrushTransient coarse(p), exact(fine);
+    for (int m = 0; m < 24; ++m)
+    {
+      sce::ContactKinematics k;
+      const bool parked = standstill && m >= 16;
+      if (parked)
+      {
+        const double vx = g(rng), vy = g(rng), sx = g(rng), sy = g(rng);
+        k.V_r = 0.01 * Eigen::Vector2d(vx, vy);
+        k.V_s = noise * Eigen::Vector2d(sx, sy);
+        k.omega_z = (a_phi + noise * g(rng)) / p.a;
+        k.psi_dot = (1.0 - chi) * k.omega_z;
+      }
+      else
+      {
+        const double phi = (a_phi + noise * g(rng)) / p.a;
+        const double sx = g(rng), sy = g(rng);
+        k = sce::ContactKinematics::fromSlips(base + noise * Eigen::Vector2d(sx, 0.3 * sy), phi, chi, 1.0);
+      }
+      const double step = m == 0 ? 0.0 : dt;
+      const sce::BrushForces c = coarse.update(k, step), f = exact.update(k, step);
+      if (m < 12)
+        continue;
+      ++messages;
+      const double e = distance(c, f, p), r = (e - f.error_estimate) / c.error_estimate;
+      below += r > 1.0;
+      if (e > 3.0 * f.error_estimate)
+        ratios.push_back(c.error_estimate / e);
+      if (r > worst)
+      {
+        worst = r;
+        where = Json{ { "history", h },         { "message", m },
+                      { "roll_over_a", dt / p.a }, { "noise", noise },
+                      { "parked", parked },     { "error", e },
+                      { "estimate", c.error_estimate },
+                      { "reference_estimate", f.error_estimate } };
+      }
+    }
+    if (h % 50 == 49)
+      std::cerr << "robot histories: " << h + 1 << " of " << n << "\n";
+  }
+  std::sort(ratios.begin(), ratios.end());
+  std::cout << Json{ { "seed", seed },
+                     { "histories", n },
+                     { "resolution", resolution },
+                     { "reference_resolution", reference },
+                     { "messages", messages },
+                     { "estimate_below_error", below },
+                     { "max_error_beyond_reference_over_estimate", worst },
+                     { "worst", where },
+                     { "clear_errors", ratios.size() },
+                     { "min_estimate_over_clear_error", ratios.empty() ? NAN : ratios.front() },
+                     { "median_estimate_over_clear_error", ratios.empty() ? NAN : ratios[ratios.size() / 2] } }
+                   .dump()
+            << "\n";
+  return below == 0 ? 0 : 1;
+}
+
 int usage()
 {
-  std::cerr << "usage: model_accuracy [N] | --sweep SEED N [--law coulomb|rigid] | --uncertainty\n";
+  std::cerr << "usage: model_accuracy [N] | --sweep SEED N [--law coulomb|rigid] | --robot-histories SEED N "
+               "[RES [REF]] | --uncertainty\n";
   return 2;
 }
 
@@ -979,7 +1074,8 @@ int main(int argc, char** argv)
   const std::vector<std::string> args(argv + 1, argv + argc);
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h"))
   {
-    std::cout << "usage: model_accuracy [N] | --sweep SEED N [--law coulomb|rigid] | --uncertainty\n"
+    std::cout << "usage: model_accuracy [N] | --sweep SEED N [--law coulomb|rigid] | --robot-histories SEED N "
+                 "[RES [REF]] | --uncertainty\n"
                  "  N: random operating points (default 1000); JSON on stdout, progress on stderr\n";
     return 0;
   }
@@ -993,6 +1089,18 @@ int main(int argc, char** argv)
     if (!law || !seed || !n)
       return usage();
     return sweep(static_cast<unsigned>(*seed), static_cast<int>(*n), *law);
+  }
+  if (!args.empty() && args[0] == "--robot-histories")
+  {
+    if (args.size() < 3 || args.size() > 5)
+      return usage();
+    const std::optional<long> seed = wholeNumber(args[1], 0, 4294967295L), n = wholeNumber(args[2], 1, 1000000);
+    const std::optional<long> res = args.size() > 3 ? wholeNumber(args[3], 8, 512) : std::optional<long>(32);
+    const std::optional<long> ref = args.size() > 4 ? wholeNumber(args[4], 16, 1024) : std::optional<long>(256);
+    if (!seed || !n || !res || !ref || *ref <= *res)
+      return usage();
+    return robotHistories(static_cast<unsigned>(*seed), static_cast<int>(*n), static_cast<int>(*res),
+                          static_cast<int>(*ref));
   }
   const auto start = Clock::now();
   Json out;

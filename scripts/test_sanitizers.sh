@@ -30,6 +30,7 @@ SWEEPS="BrushAuto.AlongTheDemoManoeuvre:BrushAuto.EstimateCoversRandomHistories"
 SWEEPS+=":BrushTransient.ErrorEstimateCoversNoisyHistoriesAtRandomPoints:ForceCovariance.SteadyModelAgainstMonteCarlo"
 SWEEPS+=":BrushSteady.ErrorEstimateBoundsTheErrorOnRandomPoints:BrushAuto.WithinItsTargetAtRandomPoints"
 SWEEPS+=":BrushTransient.ConvergesMonotonicallyOnTheFigure4Set:ContactFit.FrictionIsOnlyABoundWhereTheRunNeverSlides"
+SWEEPS+=":BrushTransient.EstimateCoversTheDefaultRobotsNoisyHistories"
 rc=0
 for t in "${TESTS[@]}"; do
   log "$t (ASan + UBSan)"

@@ -716,9 +716,9 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
   fixed = spread = 0.0;
   // The lattice sum, and the same over each of the four sub-lattices of twice the spacing (the parities of
   // the lattice indices): how far those move from the full sum bounds the error. An error C h^p with p >= 1
-  // makes the difference (2^p - 1) C h^p, at least the error itself; twice it covers the irregular part that
-  // the cells cut by the patch edge and by the onsets add (measured over noisy histories at random points,
-  // test_brush_transient: without the factor 2 the estimate fell short at 0.2-0.5 % of them, by up to 2.7x).
+  // makes the difference (2^p - 1) C h^p, at least the error itself; kSpreadFactor times it covers the irregular
+  // part that the cells cut by the patch edge and by the onsets add (measured over noisy histories at random points,
+  // test_brush_transient: without a factor the estimate fell short at 0.2-0.5 % of them, by up to 2.7x).
   BrushForces f;
   Eigen::Vector2d F[5];
   double M_z[5] = {}, load[5] = {};
@@ -802,9 +802,9 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
     for (int k = 1; k <= 4; ++k)
     {
       const BrushForces g = count[k] > 0 ? sum(k) : BrushForces{};
-      spread = std::max(spread, 2.0 *
-                                    std::max({ std::abs(g.F_x - full.F_x), std::abs(g.F_y - full.F_y),
-                                               std::abs(g.M_z - full.M_z) / p_.a }) / scale);
+      spread = std::max(spread, kSpreadFactor *
+                                          std::max({ std::abs(g.F_x - full.F_x), std::abs(g.F_y - full.F_y),
+                                                     std::abs(g.M_z - full.M_z) / p_.a }) / scale);
     }
   f.error_estimate = fixed + spread;
   return f;
