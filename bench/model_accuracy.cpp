@@ -978,7 +978,7 @@ int robotHistories(unsigned seed, int n, int resolution, int reference)
   for (int h = 0; h < n; ++h)
   {
     for (int i = 0; i < 4; ++i)
-      u(rng);  // (the draws of the envelope's a, F_z, mu, k: the same histories as the random points' generator)
+      u(rng);  // (where the envelope's histories draw a, F_z, mu and k: the robot's values replace them)
     sce::BrushParameters p;
     p.a = 0.01, p.F_z = 5.0 * 9.81, p.mu = 0.8, p.k = 2e8;
     p.pressure = sce::PressureDistribution::Parabolic;
@@ -1019,7 +1019,7 @@ int robotHistories(unsigned seed, int n, int resolution, int reference)
       if (m < 12)
         continue;
       ++messages;
-      const double e = distance(c, f, p), r = (e - f.error_estimate) / c.error_estimate;
+      const double e = distance(c, f, p), r = (e - f.error_estimate) / (c.error_estimate + 1e-300);
       below += r > 1.0;
       if (e > 3.0 * f.error_estimate)
         ratios.push_back(c.error_estimate / e);
