@@ -465,6 +465,34 @@ struct NoisyHistory
   }
 };
 
+// One seeded random noisy history (slips and spins from 1e-3 of the envelope to all of it, noise 1e-3 to 1e-1,
+// 0.03-2.5 patch radii a message at V_r = 1 m/s, three in ten ending parked with spin) on the lattices of `coarse` and
+// `fine` (the same but for the resolution): each(coarse answer, fine answer) for its last 12 of 24 messages.
+template <class Each>
+void compareAlongNoisyHistory(std::mt19937_64& rng, const BrushParameters& coarse, const BrushParameters& fine,
+                              Each each)
+{
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const BrushParameters& p = coarse;
+  const double scale = std::pow(10.0, -3.0 * u(rng));
+  const Eigen::Vector2d base = scale * Eigen::Vector2d(0.3 * (2.0 * u(rng) - 1.0), 0.1 * (2.0 * u(rng) - 1.0));
+  const double a_phi = scale * (2.0 * u(rng) - 1.0);
+  const double noise = std::pow(10.0, -3.0 + 2.0 * u(rng));
+  const double dt = std::pow(10.0, -1.5 + 1.9 * u(rng)) * p.a;  // at V_r = 1 m/s
+  const double chi = -0.5 + 2.0 * u(rng);
+  const bool parked = u(rng) < 0.3;
+  const NoisyHistory history{ base, a_phi, noise, chi, chi };
+  BrushTransient coarse_model(coarse), fine_model(fine);
+  for (int m = 0; m < 24; ++m)
+  {
+    const ContactKinematics k = history.message(rng, parked && m >= 16, p);
+    const double step = m == 0 ? 0.0 : dt;
+    const BrushForces c = coarse_model.update(k, step), f = fine_model.update(k, step);
+    if (m >= 12)
+      each(c, f);
+  }
+}
+
 TEST(BrushTransient, ErrorEstimateCoversNoisyHistoriesAtRandomPoints)
 {
   // Seeded random operating points over the envelope (a = 0.01-0.08 m, F_z = 20-5000 N, mu = 0.2-1.2,
@@ -477,37 +505,21 @@ TEST(BrushTransient, ErrorEstimateCoversNoisyHistoriesAtRandomPoints)
   for (auto law : kSlidingLaws)
   {
   std::mt19937_64 rng(23);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
   int checked = 0, short_count = 0;
   double worst = 0.0;
   for (int h = 0; h < 60; ++h)
   {
     BrushParameters p = test::drawEnvelopeParameters(rng, h, law);
     p.standstill_speed = 0.05;
-    const double scale = std::pow(10.0, -3.0 * u(rng));
-    const Eigen::Vector2d base = scale * Eigen::Vector2d(0.3 * (2.0 * u(rng) - 1.0), 0.1 * (2.0 * u(rng) - 1.0));
-    const double a_phi = scale * (2.0 * u(rng) - 1.0);
-    const double noise = std::pow(10.0, -3.0 + 2.0 * u(rng));
-    const double dt = std::pow(10.0, -1.5 + 1.9 * u(rng)) * p.a;  // at V_r = 1 m/s
-    const double chi = -0.5 + 2.0 * u(rng);
-    const bool standstill = u(rng) < 0.3;
-    const NoisyHistory history{ base, a_phi, noise, chi, chi };
     BrushParameters fine = p;
     p.resolution = 16;
     fine.resolution = 64;
-    BrushTransient coarse_model(p), fine_model(fine);
-    for (int m = 0; m < 24; ++m)
-    {
-      const ContactKinematics k = history.message(rng, standstill && m >= 16, p);
-      const double step = m == 0 ? 0.0 : dt;
-      const BrushForces c = coarse_model.update(k, step), f = fine_model.update(k, step);
-      if (m < 12)
-        continue;
+    compareAlongNoisyHistory(rng, p, fine, [&](const BrushForces& c, const BrushForces& f) {
       const double ratio = forceDistance(c, f, p) / (c.error_estimate + f.error_estimate + 1e-300);
       ++checked;
       short_count += ratio > 1.0;
       worst = std::max(worst, ratio);
-    }
+    });
   }
   std::printf("%s law: error / estimate at most %.2f, short at %d of %d messages\n", toString(law), worst, short_count,
               checked);
@@ -528,7 +540,6 @@ TEST(BrushTransient, EstimateCoversTheDefaultRobotsNoisyHistories)
   // 1.2x, where an update's four sub-lattices happen to agree: the tail grows with the sample, so this sample must stay
   // clear of it (with three times the spread: 0.61 here, 0.75 over the 13 200).
   std::mt19937_64 rng(404);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
   int checked = 0, short_count = 0;
   double worst = 0.0;
   for (int h = 0; h < 150; ++h)
@@ -538,30 +549,15 @@ TEST(BrushTransient, EstimateCoversTheDefaultRobotsNoisyHistories)
     p.pressure = PressureDistribution::Parabolic;
     p.tilt = false;
     p.standstill_speed = 0.05;
-    const double scale = std::pow(10.0, -3.0 * u(rng));
-    const Eigen::Vector2d base = scale * Eigen::Vector2d(0.3 * (2.0 * u(rng) - 1.0), 0.1 * (2.0 * u(rng) - 1.0));
-    const double a_phi = scale * (2.0 * u(rng) - 1.0);
-    const double noise = std::pow(10.0, -3.0 + 2.0 * u(rng));
-    const double dt = std::pow(10.0, -1.5 + 1.9 * u(rng)) * p.a;  // at V_r = 1 m/s
-    const double chi = -0.5 + 2.0 * u(rng);
-    const bool parked = u(rng) < 0.3;
-    const NoisyHistory history{ base, a_phi, noise, chi, chi };
     BrushParameters fine = p;
     p.resolution = 32;
     fine.resolution = 256;
-    BrushTransient coarse_model(p), fine_model(fine);
-    for (int m = 0; m < 24; ++m)
-    {
-      const ContactKinematics k = history.message(rng, parked && m >= 16, p);
-      const double step = m == 0 ? 0.0 : dt;
-      const BrushForces c = coarse_model.update(k, step), f = fine_model.update(k, step);
-      if (m < 12)
-        continue;
+    compareAlongNoisyHistory(rng, p, fine, [&](const BrushForces& c, const BrushForces& f) {
       const double ratio = (forceDistance(c, f, p) - f.error_estimate) / (c.error_estimate + 1e-300);
       ++checked;
       short_count += ratio > 1.0;
       worst = std::max(worst, ratio);
-    }
+    });
   }
   std::printf("the default robot at resolution 32: error beyond the reference's estimate / estimate at most %.2f, "
               "short at %d of %d messages\n", worst, short_count, checked);
