@@ -107,6 +107,66 @@ TEST(PolynomialRoots, ClusteredRootsAndWideScales)
   EXPECT_NEAR(roots[1], 3e-6, 1e-19);
 }
 
+TEST(PolynomialRoots, EventSearchesOfLowDegreeFromARootAtTheStart)
+{
+  // As the lattice's onset search meets them: |u|^2 - f^2 along a step, degree 4 or less, starting on the bound (a
+  // root of multiplicity k at s = 0, the interval's end) or inside it. Cubics and quartics with one sign change go
+  // straight to the root, with more through the monotone pieces, and a root at 0 outside the open interval is
+  // divided out: every case must give the same sign changes as the roots it was built from.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int checked = 0;
+  for (int trial = 0; trial < 3000; ++trial)
+  {
+    const int k = trial % 3;                    // multiplicity of the root at s = 0
+    const int n_real = trial / 3 % (5 - k);     // further real roots: degree k + n_real (+ 2 with a complex pair)
+    const bool pair = k + n_real <= 2 && trial % 2;
+    std::vector<double> real(k, 0.0);
+    std::vector<double> others;
+    for (int i = 0; i < n_real; ++i)
+      others.push_back(0.02 + 1.2 * (0.5 + 0.5 * u(rng)));  // in (0.02, 1.22): inside [0, 1] or past it
+    std::sort(others.begin(), others.end());
+    if (std::adjacent_find(others.begin(), others.end(), [](double a, double b) { return b - a < 1e-3; }) !=
+        others.end())
+      continue;
+    real.insert(real.end(), others.begin(), others.end());
+    std::vector<std::pair<double, double>> complex;
+    if (pair)
+      complex.emplace_back(u(rng), 0.01 + std::abs(u(rng)));
+    const std::vector<double> c = fromRoots(std::pow(10.0, 3.0 * u(rng)), real, complex);
+    const int n = static_cast<int>(c.size()) - 1;
+    if (n < 1)
+      continue;
+    std::vector<double> expected;
+    for (double r : others)
+      if (r < 1.0)
+        expected.push_back(r);
+    double roots[8];
+    const int found = signChanges(c.data(), n, 0.0, 1.0, roots, 8);
+    ASSERT_EQ(found, static_cast<int>(expected.size())) << "trial " << trial << " degree " << n << " k " << k;
+    for (int i = 0; i < found; ++i)
+      EXPECT_NEAR(roots[i], expected[i], 1e-9) << "trial " << trial << " degree " << n << " k " << k;
+    if (!expected.empty())
+    {
+      double first;
+      ASSERT_EQ(signChanges(c.data(), n, 0.0, 1.0, &first, 1), 1);
+      EXPECT_NEAR(first, expected.front(), 1e-9);
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 2000);
+  // inside the interval the root at 0 is a sign change where its multiplicity is odd, and is not divided out
+  double roots[4];
+  const std::vector<double> odd = fromRoots(1.0, { 0.0, 0.5 }, {}), even = fromRoots(1.0, { 0.0, 0.0, 0.5 }, {});
+  ASSERT_EQ(signChanges(odd.data(), 2, -1.0, 1.0, roots, 4), 2);
+  EXPECT_NEAR(roots[0], 0.0, 1e-15);
+  EXPECT_NEAR(roots[1], 0.5, 1e-15);
+  ASSERT_EQ(signChanges(even.data(), 3, -1.0, 1.0, roots, 4), 1);
+  EXPECT_NEAR(roots[0], 0.5, 1e-15);
+  // and beside it, on (-1, 0), the root at 0 is the interval's end: p = s (s - 0.5) changes sign nowhere inside
+  EXPECT_EQ(signChanges(odd.data(), 2, -1.0, 0.0, roots, 4), 0);
+}
+
 TEST(PolynomialRoots, NeverWritesMoreRootsThanAsked)
 {
   // A quadratic with two roots and a cubic with three, asked for one: the first only, and nothing past it

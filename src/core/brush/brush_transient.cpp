@@ -726,9 +726,14 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
   int count[5] = {};
   for (auto& v : F)
     v.setZero();
-  double utilisation = 0.0;
+  double utilisation2 = 0.0;  // (|u| / bound)^2
   int sliding = 0;
   const FrictionCap cap(p_);
+  const double mu_over_k = p_.mu / p_.k;
+  // Whatever the motion, a bristle within a - 2h of the centre lies further than a sub-lattice cell (2h) from the edge
+  // ahead and behind (weight 1, no ramp from the edge); the upstream neighbour matters only to a bristle that slid less
+  // than that far: elsewhere the motion is not needed.
+  const double inner = p_.a - 2.0 * h_, inner2 = inner > 0.0 ? inner * inner : -1.0;
   for (int j = 0; j < w_; ++j)
     for (int i = 0; i < w_; ++i)
     {
@@ -738,10 +743,13 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
       const Eigen::Vector2d x = position(i, j), &u = u_[p];
       const bool slides = sliding_[p];
       sliding += slides;
-      const double q_z = cap.qz(x.squaredNorm());
-      const double bound = p_.mu * q_z / p_.k;
-      utilisation = std::max(utilisation, slides ? 1.0 : (bound > 0.0 ? u.norm() / bound : 0.0));
-      const Motion motion = motionAt(x);
+      const double r2 = x.squaredNorm(), q_z = cap.qz(r2);
+      const double bound = mu_over_k * q_z;
+      if (slides)
+        utilisation2 = std::max(utilisation2, 1.0);
+      else if (bound > 0.0)
+        utilisation2 = std::max(utilisation2, u.squaredNorm() / (bound * bound));
+      const Motion motion = r2 > inner2 || (slides && slip_travel_[p] < 2.0 * h_) ? motionAt(x) : Motion{};
       for (int k : { 0, 1 + (i & 1) + 2 * (j & 1) })
       {
         double weight;
@@ -791,7 +799,7 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
   f.F_y = full.F_y;
   f.M_z = full.M_z;
   f.sliding_fraction = static_cast<double>(sliding) / count[0];
-  f.max_utilisation = utilisation;
+  f.max_utilisation = std::sqrt(utilisation2);
   const double scale = p_.mu * p_.F_z;
   fixed = streak_estimate_;
   if (scale > 0.0)

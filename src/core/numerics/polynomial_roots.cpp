@@ -14,29 +14,43 @@ namespace
 constexpr int kSize = kMaxPolynomialDegree + 1;
 constexpr int kMaxDepth = 52;  // halvings: below that the interval is at the resolution of a double
 
-// C(k, j) / C(n, j) for the monomial -> Bernstein conversion, built once per degree on the stack
-// The root of p in (a, b), where p(a) = fa and p(b) have opposite signs: Newton's method kept inside the
-// shrinking bracket (bisection where a step would leave it). Quadratic at a simple root, and it never fails.
-double bracketedNewton(const double* c, int n, double a, double b, double fa, double fb)
+// p and p' at t by Horner's rule; N >= 0: the degree, known at compile time (the loop unrolled), else n.
+template <int N>
+inline void horner(const double* c, int n, double t, double& f, double& df)
 {
-  double t = a - fa * (b - a) / (fb - fa);  // regula falsi start
+  const int m = N >= 0 ? N : n;
+  f = c[m];
+  df = 0.0;
+  for (int j = m - 1; j >= 0; --j)
+  {
+    df = df * t + f;
+    f = f * t + c[j];
+  }
+}
+
+// The root of p in (a, b), where p(a) = fa and p(b) = fb have opposite signs: Newton's method from `start` (regula
+// falsi where it is not inside) kept inside the shrinking bracket (bisection where a step would leave it). Quadratic at
+// a simple root, and it never fails.
+template <int N>
+double newtonInBracket(const double* c, int n, double a, double b, double fa, double fb, double start)
+{
+  double t = start;
+  if (!(t > a && t < b))
+    t = a - fa * (b - a) / (fb - fa);
   if (!(t > a && t < b))
     t = 0.5 * (a + b);
+  const bool fa_positive = fa > 0.0;
   for (int it = 0; it < 100; ++it)
   {
-    double f = c[n], df = 0.0;
-    for (int j = n - 1; j >= 0; --j)
-    {
-      df = df * t + f;
-      f = f * t + c[j];
-    }
+    double f, df;
+    horner<N>(c, n, t, f, df);
     if (f == 0.0)
       return t;
-    if ((f > 0.0) == (fa > 0.0))
-      a = t, fa = f;
+    if ((f > 0.0) == fa_positive)
+      a = t;
     else
       b = t;
-    const double tol = 4.0 * std::numeric_limits<double>::epsilon() * std::max({ std::abs(a), std::abs(b), 1e-300 });
+    const double tol = 4.0 * std::numeric_limits<double>::epsilon() * std::max(std::max(std::abs(a), std::abs(b)), 1e-300);
     if (b - a <= tol)
       return t;
     double next = 0.5 * (a + b);
@@ -53,6 +67,64 @@ double bracketedNewton(const double* c, int n, double a, double b, double fa, do
   return t;
 }
 
+double bracketedNewton(const double* c, int n, double a, double b, double fa, double fb, double start = NAN)
+{
+  switch (n)
+  {
+    case 3:
+      return newtonInBracket<3>(c, n, a, b, fa, fb, start);
+    case 4:
+      return newtonInBracket<4>(c, n, a, b, fa, fb, start);
+    default:
+      return newtonInBracket<-1>(c, n, a, b, fa, fb, start);
+  }
+}
+
+// The number of sign changes in b[0..n], zeros skipped.
+int variations(const double* b, int n)
+{
+  int v = 0, last = 0;
+  for (int k = 0; k <= n; ++k)
+  {
+    const int s = (b[k] > 0.0) - (b[k] < 0.0);
+    if (s == 0)
+      continue;
+    if (last != 0 && s != last)
+      ++v;
+    last = s;
+  }
+  return v;
+}
+
+// The Bernstein coefficients on [lo, hi] of p(s) = sum c[i] s^i: q(t) = p(lo + d t) by a Taylor shift to lo (synthetic
+// division) and a scaling by d = hi - lo, then b_k = sum_{j <= k} C(k, j) / C(n, j) q_j: q_j / C(n, j) (the reciprocals
+// built up along j), and the binomial transform sum_j C(k, j) x_j as n passes of neighbour sums (Pascal's triangle), with
+// no division in the O(n^2) part.
+void bernstein(const double* c, int n, double lo, double hi, double* b)
+{
+  const double d = hi - lo;
+  double a[kSize];
+  std::copy(c, c + n + 1, a);
+  if (lo != 0.0)
+    for (int i = 0; i < n; ++i)
+      for (int j = n - 1; j >= i; --j)
+        a[j] += lo * a[j + 1];
+  // 1 / C(n, j) for the degrees of the event searches, else built up along j
+  static constexpr double kInverse[5][5] = {
+    { 1.0 }, { 1.0, 1.0 }, { 1.0, 0.5, 1.0 }, { 1.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 }, { 1.0, 0.25, 1.0 / 6.0, 0.25, 1.0 }
+  };
+  double scale = 1.0, inverse = 1.0;  // d^j, 1 / C(n, j)
+  for (int j = 0; j <= n; ++j, scale *= d)
+  {
+    b[j] = a[j] * scale * (n <= 4 ? kInverse[n][j] : inverse);
+    if (n > 4 && j < n)
+      inverse *= static_cast<double>(j + 1) / static_cast<double>(n - j);
+  }
+  for (int r = 0; r < n; ++r)
+    for (int k = n; k > r; --k)
+      b[k] += b[k - 1];
+}
+
 struct Isolation
 {
   const double* c;  // monomial coefficients in s
@@ -63,21 +135,6 @@ struct Isolation
   int found = 0;
 
   double p(double t) const { return evaluatePolynomial(c, n, lo + d * t); }
-
-  int variations(const double* b) const
-  {
-    int v = 0, last = 0;
-    for (int k = 0; k <= n; ++k)
-    {
-      const int s = (b[k] > 0.0) - (b[k] < 0.0);
-      if (s == 0)
-        continue;
-      if (last != 0 && s != last)
-        ++v;
-      last = s;
-    }
-    return v;
-  }
 
   void record(double t)
   {
@@ -104,7 +161,7 @@ struct Isolation
   {
     if (found >= max_roots)
       return;
-    const int v = variations(b);
+    const int v = variations(b, n);
     if (v == 0)
       return;
     const bool ends_differ = (b[0] > 0.0) != (b[n] > 0.0) && b[0] != 0.0 && b[n] != 0.0;
@@ -230,34 +287,49 @@ int signChanges(const double* c, int n, double lo, double hi, double* roots, int
     return 0;
   while (n > 0 && c[n] == 0.0)
     --n;
+  // a root at s = 0 outside the open interval (an event search from a start on the bound): p = s q with s of one sign
+  // there, so q changes sign where p does
+  while (n > 0 && c[0] == 0.0 && !(lo < 0.0 && hi > 0.0))
+    ++c, --n;
   if (n == 0)
     return 0;
-  if (n <= kLowDegree)
-    return lowDegreeSignChanges(c, n, lo, hi, roots, max_roots);
-  // q(t) = p(lo + d t): Taylor shift to lo (synthetic division), then scale by d
-  const double d = hi - lo;
-  double a[kSize];
-  std::copy(c, c + n + 1, a);
-  for (int i = 0; i < n; ++i)
-    for (int j = n - 1; j >= i; --j)
-      a[j] += lo * a[j + 1];
-  double scale = 1.0;
-  for (int j = 0; j <= n; ++j, scale *= d)
-    a[j] *= scale;
-  // Bernstein coefficients b_k = sum_{j <= k} C(k, j) / C(n, j) a_j
+  if (n <= 2)
+    return lowDegreeSignChanges(c, n, lo, hi, roots, max_roots);  // the closed form
   double b[kSize];
-  for (int k = 0; k <= n; ++k)
+  bernstein(c, n, lo, hi, b);
+  if (n <= kLowDegree)
   {
-    double sum = 0.0, ratio = 1.0;  // C(k, j) / C(n, j), from j = 0
-    for (int j = 0; j <= k; ++j)
+    // Descartes' rule on the Bernstein coefficients: no sign change among them, no root; exactly one, with the ends of
+    // opposite signs, exactly one simple root, found in [lo, hi] at once (the common case of an event search). Where an
+    // inner coefficient is within rounding of zero its sign, and so the count, is not to be trusted: the monotone pieces.
+    double largest = 0.0;
+    for (int k = 0; k <= n; ++k)
+      largest = std::max(largest, std::abs(b[k]));
+    bool clear = true;
+    for (int k = 1; k < n; ++k)
+      clear = clear && std::abs(b[k]) > 1e-10 * largest;
+    // (the end coefficients are the values at the ends: where direct evaluation gives another sign, rounding decides)
+    const double f_lo = evaluatePolynomial(c, n, lo), f_hi = evaluatePolynomial(c, n, hi);
+    const auto sign = [](double x) { return (x > 0.0) - (x < 0.0); };
+    if (clear && f_lo != 0.0 && f_hi != 0.0 && sign(f_lo) == sign(b[0]) && sign(f_hi) == sign(b[n]))
     {
-      sum += ratio * a[j];
-      if (j < k)
-        ratio *= static_cast<double>(k - j) / static_cast<double>(n - j);
+      const int v = variations(b, n);
+      if (v == 0)
+        return 0;
+      if (v == 1)
+      {
+        // from where the control polygon crosses zero (the curve's subdivision limit: closer than the chord)
+        int k = 0;
+        while ((b[k] > 0.0) == (b[k + 1] > 0.0))
+          ++k;
+        const double t = (k + b[k] / (b[k] - b[k + 1])) / n;
+        roots[0] = bracketedNewton(c, n, lo, hi, f_lo, f_hi, lo + (hi - lo) * t);
+        return 1;
+      }
     }
-    b[k] = sum;
+    return lowDegreeSignChanges(c, n, lo, hi, roots, max_roots);
   }
-  Isolation iso{ c, n, lo, d, roots, max_roots };
+  Isolation iso{ c, n, lo, hi - lo, roots, max_roots };
   iso.isolate(b, 0.0, 1.0, 0);
   return iso.found;
 }
