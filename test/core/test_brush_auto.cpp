@@ -4,6 +4,7 @@
 
 // STL
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <vector>
 
@@ -13,6 +14,7 @@
 // Package
 #include "brush_test_support.h"
 #include "sphere_contact_estimator/core/brush/brush_auto.h"
+#include "sphere_contact_estimator/core/brush/brush_transient.h"
 #include "scenario.h"
 
 namespace sphere_contact_estimator
@@ -387,6 +389,69 @@ TEST(BrushAuto, TheResolutionComesBackDownAndResetRestoresIt)
   EXPECT_LT(lowest, hard);
   model.reset();
   EXPECT_EQ(model.transientResolution(), 16);
+}
+
+TEST(BrushAuto, ReturningWithinATransitOfLeavingRollsOnWithoutAWarmStart)
+{
+  // On leaving the transient model for the steady family the lattice keeps rolling for a transit beside the steady
+  // answers: a lag that comes back within it (on the manoeuvre's weave every visit to the steady family ended one
+  // message later) returns to that lattice as it stands, not to a warm start that rolls 2.5 transits in one message. A
+  // return after the transit starts warm, as before. Which one happened shows in the estimated cost (cost(): a warm start
+  // adds 5 * resolution steps of the lattice, a message's roll one). Either way every answer is within its estimate of a
+  // lattice eight times as fine that never left.
+  BrushParameters p = figure4Parameters();
+  p.resolution = 16;
+  p.accuracy_target = 1e-2;
+  BrushParameters fine = p;
+  fine.resolution = 128;
+  const double V = 1.0, dt = 0.002;  // 2 mm a message: a transit (2a) is 50 messages
+  const auto slips = [](int i, int jump) {
+    const double held = 0.05 + 0.03 * std::sin(2.0 * M_PI * 100 / 40.0);
+    const double sigma_x = i < 100 ? 0.05 + 0.03 * std::sin(2.0 * M_PI * i / 40.0) : (i < jump ? held : 0.15);
+    return ContactKinematics::fromSlips({ sigma_x, 0.02 }, 3.33, 1.0, 1.0);
+  };
+  for (int after : { 5, 80 })  // messages in the steady family before the slips jump: within the transit, past it
+  {
+    // where auto leaves the transient model at these held inputs
+    int left = -1;
+    {
+      BrushAuto probe(p);
+      for (int i = 0; i < 1000 && left < 0; ++i)
+      {
+        probe.update(slips(i, 100000), dt);
+        if (i >= 100 && probe.lastModel() != BrushModelKind::Transient)
+          left = i;
+      }
+    }
+    ASSERT_GE(left, 100);
+    const int jump = left + after;
+    BrushAuto model(p);
+    BrushTransient reference(fine);
+    for (int i = 0; i <= jump; ++i)
+    {
+      const double before = model.cost();
+      const BrushForces f = model.update(slips(i, jump), dt);
+      const BrushForces r = reference.update(slips(i, jump), dt);
+      if (i > left && i < jump)
+        ASSERT_NE(model.lastModel(), BrushModelKind::Transient) << "message " << i;
+      const double error = std::max({ std::abs(f.F_x - r.F_x), std::abs(f.F_y - r.F_y), std::abs(f.M_z - r.M_z) / p.a }) /
+                           (p.mu * p.F_z);
+      if (i >= 150)  // (the reference started from an unloaded patch, auto from the steady state: both forgotten)
+        EXPECT_LE(error, f.error_estimate + r.error_estimate) << "after " << after << ", message " << i;
+      if (i == jump)
+      {
+        ASSERT_EQ(model.lastModel(), BrushModelKind::Transient) << "after " << after;
+        const int n = model.transientResolution();
+        const double warm = BrushAuto::transientStepCost(n) * 5.0 * n, spent = model.cost() - before;
+        std::printf("back %d messages after leaving: the returning message's work %ld, estimated cost %.0f ns "
+                    "(a warm start's %.0f)\n", after, f.work, spent, warm);
+        if (after < 50)
+          EXPECT_LT(spent, 0.2 * warm);
+        else
+          EXPECT_GE(spent, warm);
+      }
+    }
+  }
 }
 
 TEST(BrushAuto, ANoiseThatFallsBetweenLagChecksKeepsTheTargetPositive)

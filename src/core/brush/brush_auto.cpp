@@ -79,6 +79,7 @@ void BrushAuto::reset()
   transient_->reset();
   finer_.reset();
   in_transient_ = false;
+  probation_ = false;
   steady_distance_ = 0.0;
   lag_->reset();
   have_check_ = false;
@@ -257,6 +258,8 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
     out = steadyFamily(s, sigma, target - check.lag, model);
     out.error_estimate += check.lag;
     frame.forcesToPatch(out);
+    if (probation_)
+      rollOnProbation(kin, s, dt);
   }
   carryAcrossSwitches(out, s, sigma, frame, dt, before, before_resolution, model, resolution);
   out.flags &= ~brush_flags::kLinearSaturated;  // auto never publishes a saturated linear answer as such
@@ -332,10 +335,19 @@ void BrushAuto::chooseFamily(const ContactKinematics& kin, const Slips& s, doubl
     {
       in_transient_ = false;  // its state is the steady one now
       finer_.reset();
+      probation_ = true;
+      probation_travel_ = 0.0;
     }
   }
   else if (in_transient_)
     steady_distance_ = 0.0;
+  else if (!check.steady && probation_)
+  {
+    // back within the transit after leaving: the lattice rolled all along, and goes on from where it is
+    probation_ = false;
+    in_transient_ = true;
+    steady_distance_ = 0.0;
+  }
   else if (!check.steady)
     enterTransient(kin, dt);  // from the state before this step
   if (s.defined)
@@ -344,6 +356,23 @@ void BrushAuto::chooseFamily(const ContactKinematics& kin, const Slips& s, doubl
     have_rolling_ = true;
     last_lag_ = check.lag;
   }
+}
+
+void BrushAuto::rollOnProbation(const ContactKinematics& kin, const Slips& s, double dt)
+{
+  // the lattice's step beside the steady family's answer, while the budget carries it; a transit on, the steady state
+  // has held long enough that a later return starts warm
+  probation_travel_ += s.defined ? s.V_r * dt : 0.0;
+  if (probation_travel_ >= longestPath(p_) || transient_->predictWork(kin, dt) > remaining())
+  {
+    probation_ = false;
+    return;
+  }
+  transient_->setWorkBudget(remaining());
+  const BrushForces f = transient_->update(kin, dt);
+  spent_ += f.work;
+  cost_ += transientStepCost(transient_resolution_) * std::max(1.0, std::ceil(s.V_r * dt / (p_.a / transient_resolution_)));
+  entry_error_ *= lag_->slowest(s.V_r * dt / (0.5 * longestPath(p_) / p_.a));
 }
 
 BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips& s, double dt, double target,

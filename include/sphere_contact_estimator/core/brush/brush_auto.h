@@ -43,7 +43,7 @@ class SteadyLag;
 ///
 /// The transient model is left only after the steady conditions have held over one transit (2a travelled),
 /// when its state is the steady one, and entered from a steady state by rolling it to that state at the last
-/// rolling inputs. At every switch the published forces carry the difference between the two models and let
+/// rolling inputs; for a transit after leaving, its lattice keeps rolling, and a return within it goes on from there. At every switch the published forces carry the difference between the two models and let
 /// it decay over a quarter transit, so they do not jump; the carried difference counts in the estimate.
 class BrushAuto : public BrushModel
 {
@@ -114,6 +114,7 @@ private:
   void stepLag(const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame, double target,
                bool steady_exists, double travel);
   void enterTransient(const ContactKinematics& kin, double dt);
+  void rollOnProbation(const ContactKinematics& kin, const Slips& s, double dt);
   double effectiveTarget() const;
   long remaining() const { return std::max(1L, work_budget_ - spent_); }
 
@@ -129,6 +130,12 @@ private:
   long spent_ = 0;              // work of the update under way
   bool in_transient_ = false;
   double steady_distance_ = 0.0;  // travelled while the steady conditions held, in transient mode
+  // For a transit after leaving the transient model its lattice keeps rolling beside the steady family's answers, so
+  // that a lag that comes back within it returns to the lattice as it is, not to a warm start (2.5 transits rolled in
+  // one message): on the manoeuvre's weave at 100 Hz every one of the five visits to the steady family ended one message
+  // later, and those re-entries were its five slowest messages, up to 2.5 times an ordinary one.
+  bool probation_ = false;
+  double probation_travel_ = 0.0;
   std::unique_ptr<SteadyLag> lag_;  // of the steady state behind the true one
   BrushForces steady_cache_;    // the steady model at this update's inputs, if stepLag evaluated it
   bool steady_cached_ = false;
