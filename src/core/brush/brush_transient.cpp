@@ -631,20 +631,30 @@ void BrushTransient::recentre()
   if (di == 0 && dj == 0)
     return;
   // New index (i, j) holds old (i + di, j + dj); points shifted in from outside the window lie outside
-  // the patch (the margin), so they start undeformed.
-  for (int j = 0; j < w_; ++j)
-    for (int i = 0; i < w_; ++i)
+  // the patch (the margin), so they start undeformed. Row by row: the kept stretch of a row is contiguous in both.
+  const int i0 = std::clamp(-di, 0, w_), i1 = std::clamp(w_ - di, i0, w_);  // the kept columns [i0, i1)
+  const auto shift = [&](auto& to, const auto& from, const auto& blank) {
+    for (int j = 0; j < w_; ++j)
     {
-      const std::size_t p = index(i, j);
-      const int si = i + di, sj = j + dj;
-      const bool kept = si >= 0 && sj >= 0 && si < w_ && sj < w_;
-      u_scratch_[p] = kept ? u_[index(si, sj)] : Eigen::Vector2d::Zero();
-      jump_scratch_[p] = kept ? jump_[index(si, sj)] : Eigen::Vector2d::Zero();
-      inside_scratch_[p] = kept ? inside_[index(si, sj)] : 0;
-      sliding_scratch_[p] = kept ? sliding_[index(si, sj)] : 0;
-      slip_travel_scratch_[p] = kept ? slip_travel_[index(si, sj)] : INFINITY;
-      step_error_scratch_[p] = kept ? step_error_[index(si, sj)] : 0.0;
+      const auto row = to.begin() + static_cast<std::ptrdiff_t>(index(0, j));
+      const int sj = j + dj;
+      if (sj < 0 || sj >= w_ || i0 >= i1)
+      {
+        std::fill(row, row + w_, blank);
+        continue;
+      }
+      std::fill(row, row + i0, blank);
+      const auto source = from.begin() + static_cast<std::ptrdiff_t>(index(i0 + di, sj));
+      std::copy(source, source + (i1 - i0), row + i0);
+      std::fill(row + i1, row + w_, blank);
     }
+  };
+  shift(u_scratch_, u_, Eigen::Vector2d::Zero().eval());
+  shift(jump_scratch_, jump_, Eigen::Vector2d::Zero().eval());
+  shift(inside_scratch_, inside_, std::uint8_t{ 0 });
+  shift(sliding_scratch_, sliding_, std::uint8_t{ 0 });
+  shift(slip_travel_scratch_, slip_travel_, static_cast<double>(INFINITY));
+  shift(step_error_scratch_, step_error_, 0.0);
   u_.swap(u_scratch_);
   jump_.swap(jump_scratch_);
   inside_.swap(inside_scratch_);
@@ -749,8 +759,24 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
         utilisation2 = std::max(utilisation2, 1.0);
       else if (bound > 0.0)
         utilisation2 = std::max(utilisation2, u.squaredNorm() / (bound * bound));
-      const Motion motion = r2 > inner2 || (slides && slip_travel_[p] < 2.0 * h_) ? motionAt(x) : Motion{};
-      for (int k : { 0, 1 + (i & 1) + 2 * (j & 1) })
+      const int sub = 1 + (i & 1) + 2 * (j & 1);  // the sub-lattice of this point's parities
+      if (!(r2 > inner2 || (slides && slip_travel_[p] < 2.0 * h_)))
+      {
+        // (cellSum's weight 1 and its deflection u alike on both lattices there)
+        const double moment = x.x() * u.y() - x.y() * u.x();
+        F[0] += u;
+        F[sub] += u;
+        M_z[0] += moment;
+        M_z[sub] += moment;
+        load[0] += q_z;
+        load[sub] += q_z;
+        step_error += step_error_[p];
+        ++count[0];
+        ++count[sub];
+        continue;
+      }
+      const Motion motion = motionAt(x);
+      for (int k : { 0, sub })
       {
         double weight;
         const Eigen::Vector2d cell = cellSum(i, j, motion, k, weight);
