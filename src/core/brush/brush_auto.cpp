@@ -371,7 +371,8 @@ void BrushAuto::rollOnProbation(const ContactKinematics& kin, const Slips& s, do
   transient_->setWorkBudget(remaining());
   const BrushForces f = transient_->update(kin, dt);
   spent_ += f.work;
-  cost_ += transientStepCost(transient_resolution_) * std::max(1.0, std::ceil(s.V_r * dt / (p_.a / transient_resolution_)));
+  const double spacings = s.V_r * dt / (p_.a / transient_resolution_);
+  cost_ += transientStepCost(transient_resolution_) * std::max(1.0, std::ceil(spacings));
   entry_error_ *= lag_->slowest(s.V_r * dt / (0.5 * longestPath(p_) / p_.a));
 }
 

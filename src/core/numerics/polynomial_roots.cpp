@@ -50,7 +50,8 @@ double newtonInBracket(const double* c, int n, double a, double b, double fa, do
       a = t;
     else
       b = t;
-    const double tol = 4.0 * std::numeric_limits<double>::epsilon() * std::max(std::max(std::abs(a), std::abs(b)), 1e-300);
+    const double tol =
+        4.0 * std::numeric_limits<double>::epsilon() * std::max(std::max(std::abs(a), std::abs(b)), 1e-300);
     if (b - a <= tol)
       return t;
     double next = 0.5 * (a + b);
@@ -96,10 +97,10 @@ int variations(const double* b, int n)
   return v;
 }
 
-// The Bernstein coefficients on [lo, hi] of p(s) = sum c[i] s^i: q(t) = p(lo + d t) by a Taylor shift to lo (synthetic
-// division) and a scaling by d = hi - lo, then b_k = sum_{j <= k} C(k, j) / C(n, j) q_j: q_j / C(n, j) (the reciprocals
-// built up along j), and the binomial transform sum_j C(k, j) x_j as n passes of neighbour sums (Pascal's triangle), with
-// no division in the O(n^2) part.
+// The Bernstein coefficients on [lo, hi] of p(s) = sum c[i] s^i: q(t) = p(lo + d t) by a Taylor shift to lo
+// (synthetic division) and a scaling by d = hi - lo, then b_k = sum_{j <= k} C(k, j) / C(n, j) q_j: q_j / C(n, j)
+// (the reciprocals built up along j), and the binomial transform sum_j C(k, j) x_j as n passes of neighbour sums
+// (Pascal's triangle), with no division in the O(n^2) part.
 void bernstein(const double* c, int n, double lo, double hi, double* b)
 {
   const double d = hi - lo;
@@ -299,9 +300,10 @@ int signChanges(const double* c, int n, double lo, double hi, double* roots, int
   bernstein(c, n, lo, hi, b);
   if (n <= kLowDegree)
   {
-    // Descartes' rule on the Bernstein coefficients: no sign change among them, no root; exactly one, with the ends of
-    // opposite signs, exactly one simple root, found in [lo, hi] at once (the common case of an event search). Where an
-    // inner coefficient is within rounding of zero its sign, and so the count, is not to be trusted: the monotone pieces.
+    // Descartes' rule on the Bernstein coefficients: no sign change among them, no root; exactly one, with the ends
+    // of opposite signs, exactly one simple root, found in [lo, hi] at once (the common case of an event search).
+    // Where an inner coefficient is within rounding of zero its sign, and so the count, is not to be trusted: the
+    // monotone pieces.
     double largest = 0.0;
     for (int k = 0; k <= n; ++k)
       largest = std::max(largest, std::abs(b[k]));

@@ -43,8 +43,9 @@ class SteadyLag;
 ///
 /// The transient model is left only after the steady conditions have held over one transit (2a travelled),
 /// when its state is the steady one, and entered from a steady state by rolling it to that state at the last
-/// rolling inputs; for a transit after leaving, its lattice keeps rolling, and a return within it goes on from there. At every switch the published forces carry the difference between the two models and let
-/// it decay over a quarter transit, so they do not jump; the carried difference counts in the estimate.
+/// rolling inputs; for a transit after leaving, its lattice keeps rolling, and a return within it goes on from there.
+/// At every switch the published forces carry the difference between the two models and let it decay over a quarter
+/// transit, so they do not jump; the carried difference counts in the estimate.
 class BrushAuto : public BrushModel
 {
 public:
