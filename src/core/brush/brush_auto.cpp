@@ -368,12 +368,18 @@ void BrushAuto::rollOnProbation(const ContactKinematics& kin, const Slips& s, do
     probation_ = false;
     return;
   }
-  transient_->setWorkBudget(remaining());
-  const BrushForces f = transient_->update(kin, dt);
-  spent_ += f.work;
-  const double spacings = s.V_r * dt / (p_.a / transient_resolution_);
-  cost_ += transientStepCost(transient_resolution_) * std::max(1.0, std::ceil(spacings));
+  stepLattice(*transient_, transient_resolution_, kin, s, dt);
   entry_error_ *= lag_->slowest(s.V_r * dt / (0.5 * longestPath(p_) / p_.a));
+}
+
+BrushForces BrushAuto::stepLattice(BrushTransient& lattice, int resolution, const ContactKinematics& kin,
+                                   const Slips& s, double dt)
+{
+  lattice.setWorkBudget(remaining());
+  const BrushForces f = lattice.update(kin, dt);
+  spent_ += f.work;
+  cost_ += transientStepCost(resolution) * std::max(1.0, std::ceil(s.V_r * dt / (p_.a / resolution)));
+  return f;
 }
 
 BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips& s, double dt, double target,
@@ -386,13 +392,10 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
     finer_.reset();
     easy_travel_ = 0.0;
   }
-  transient_->setWorkBudget(remaining());
-  BrushForces out = transient_->update(kin, dt);
-  spent_ += out.work;
+  resolution = transient_resolution_;
+  BrushForces out = stepLattice(*transient_, resolution, kin, s, dt);
   entry_error_ *= lag_->slowest(s.V_r * dt / (0.5 * longestPath(p_) / p_.a));  // the slowest renewal
   out.error_estimate += entry_error_;
-  resolution = transient_resolution_;
-  cost_ += transientStepCost(resolution) * std::max(1.0, std::ceil(s.V_r * dt / (p_.a / resolution)));
   // A missed target asks for twice the resolution. Rolling, a finer lattice starts beside this one (warm, in
   // the steady state of these inputs) and takes over once it has rolled the longest path: then every bristle
   // on it entered under inputs it followed, so it holds nothing of its start. Interpolating the state onto the
@@ -404,9 +407,7 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
     finer_.reset();  // the budget no longer carries both lattices
   if (finer_)
   {
-    finer_->setWorkBudget(remaining());
-    spent_ += finer_->update(kin, dt).work;
-    cost_ += transientStepCost(2 * resolution) * std::max(1.0, std::ceil(s.V_r * dt / (p_.a / (2 * resolution))));
+    stepLattice(*finer_, 2 * resolution, kin, s, dt);
     finer_travel_ += s.V_r * dt;
     if (finer_travel_ >= longestPath(p_))
     {

@@ -759,27 +759,13 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
         utilisation2 = std::max(utilisation2, 1.0);
       else if (bound > 0.0)
         utilisation2 = std::max(utilisation2, u.squaredNorm() / (bound * bound));
-      const int sub = 1 + (i & 1) + 2 * (j & 1);  // the sub-lattice of this point's parities
-      if (!(r2 > inner2 || (slides && slip_travel_[p] < 2.0 * h_)))
+      // plain: cellSum's weight is 1 and its cell u on both lattices, and the motion is not needed
+      const bool plain = !(r2 > inner2 || (slides && slip_travel_[p] < 2.0 * h_));
+      const Motion motion = plain ? Motion{} : motionAt(x);
+      for (int k : { 0, 1 + (i & 1) + 2 * (j & 1) })
       {
-        // (cellSum's weight 1 and its deflection u alike on both lattices there)
-        const double moment = x.x() * u.y() - x.y() * u.x();
-        F[0] += u;
-        F[sub] += u;
-        M_z[0] += moment;
-        M_z[sub] += moment;
-        load[0] += q_z;
-        load[sub] += q_z;
-        step_error += step_error_[p];
-        ++count[0];
-        ++count[sub];
-        continue;
-      }
-      const Motion motion = motionAt(x);
-      for (int k : { 0, sub })
-      {
-        double weight;
-        const Eigen::Vector2d cell = cellSum(i, j, motion, k, weight);
+        double weight = 1.0;
+        const Eigen::Vector2d cell = plain ? u : cellSum(i, j, motion, k, weight);
         F[k] += cell;
         M_z[k] += x.x() * cell.y() - x.y() * cell.x();
         load[k] += weight * q_z;

@@ -116,6 +116,9 @@ private:
                bool steady_exists, double travel);
   void enterTransient(const ContactKinematics& kin, double dt);
   void rollOnProbation(const ContactKinematics& kin, const Slips& s, double dt);
+  // One step of a lattice at its resolution within what is left of the budget: its work spent and its cost counted.
+  BrushForces stepLattice(BrushTransient& lattice, int resolution, const ContactKinematics& kin, const Slips& s,
+                          double dt);
   double effectiveTarget() const;
   long remaining() const { return std::max(1L, work_budget_ - spent_); }
 
