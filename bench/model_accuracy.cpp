@@ -45,6 +45,7 @@
 #include "brush_brute_force.h"
 #include "brush_coulomb_reference.h"
 #include "brush_marching.h"
+#include "noisy_history.h"
 #include "sphere_contact_estimator/core/brush/brush_auto.h"
 #include "sphere_contact_estimator/core/brush/brush_linear.h"
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
@@ -985,35 +986,16 @@ int robotHistories(unsigned seed, int n, int resolution, int reference)
     p.tilt = false;
     p.sliding_law = sce::SlidingLaw::Coulomb;
     p.standstill_speed = 0.05;
-    const double scale = std::pow(10.0, -3.0 * u(rng));
-    const Eigen::Vector2d base = scale * Eigen::Vector2d(0.3 * (2.0 * u(rng) - 1.0), 0.1 * (2.0 * u(rng) - 1.0));
-    const double a_phi = scale * (2.0 * u(rng) - 1.0);
-    const double noise = std::pow(10.0, -3.0 + 2.0 * u(rng));
-    const double dt = std::pow(10.0, -1.5 + 1.9 * u(rng)) * p.a;  // at V_r = 1 m/s
-    const double chi = -0.5 + 2.0 * u(rng);
-    const bool standstill = u(rng) < 0.3;
+    const sce::test::NoisyHistoryDraw draw = sce::test::drawNoisyHistory(rng, p);
+    const double dt = draw.dt, noise = draw.history.noise;
     sce::BrushParameters fine = p;
     p.resolution = resolution;
     fine.resolution = reference;
     sce::BrushTransient coarse(p), exact(fine);
     for (int m = 0; m < 24; ++m)
     {
-      sce::ContactKinematics k;
-      const bool parked = standstill && m >= 16;
-      if (parked)
-      {
-        const double vx = g(rng), vy = g(rng), sx = g(rng), sy = g(rng);
-        k.V_r = 0.01 * Eigen::Vector2d(vx, vy);
-        k.V_s = noise * Eigen::Vector2d(sx, sy);
-        k.omega_z = (a_phi + noise * g(rng)) / p.a;
-        k.psi_dot = (1.0 - chi) * k.omega_z;
-      }
-      else
-      {
-        const double phi = (a_phi + noise * g(rng)) / p.a;
-        const double sx = g(rng), sy = g(rng);
-        k = sce::ContactKinematics::fromSlips(base + noise * Eigen::Vector2d(sx, 0.3 * sy), phi, chi, 1.0);
-      }
+      const bool parked = draw.parked && m >= 16;
+      const sce::ContactKinematics k = draw.history.message(rng, g, parked, p);  // (one g for the run: its spare draw)
       const double step = m == 0 ? 0.0 : dt;
       const sce::BrushForces c = coarse.update(k, step), f = exact.update(k, step);
       if (m < 12)

@@ -13,6 +13,7 @@
 // Package
 #include "brush_test_support.h"
 #include "bristle_path.h"
+#include "noisy_history.h"
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
 #include "sphere_contact_estimator/core/brush/brush_transient.h"
 
@@ -433,60 +434,18 @@ TEST(BrushTransient, TiltingRadiusInsideThePatch)
   }
 }
 
-// One message of a noisy history at a random point: rolling at the base slips and spin a_phi / a with noise on each
-// (phi held within |R_gamma| > a / 0.9 with tilt), or, parked, creeping at 0.01 m/s with noise for the slip velocity
-// and the spin; the draws in a fixed order.
-struct NoisyHistory
-{
-  Eigen::Vector2d base;
-  double a_phi, noise;
-  double chi;         // rolling: chi_gamma
-  double chi_parked;  // parked: psi_dot = (1 - chi_parked) omega_z
-
-  ContactKinematics message(std::mt19937_64& rng, bool parked, const BrushParameters& p) const
-  {
-    std::normal_distribution<double> g(0.0, 1.0);
-    ContactKinematics k;
-    if (parked)
-    {
-      const double vx = g(rng), vy = g(rng);
-      k.V_r = 0.01 * Eigen::Vector2d(vx, vy);
-      const double sx = g(rng), sy = g(rng);
-      k.V_s = noise * Eigen::Vector2d(sx, sy);
-      k.omega_z = (a_phi + noise * g(rng)) / p.a;
-      k.psi_dot = (1.0 - chi_parked) * k.omega_z;
-      return k;
-    }
-    double phi = (a_phi + noise * g(rng)) / p.a;
-    if (p.tilt && std::abs(chi * phi) * p.a > 0.9)
-      phi = std::copysign(0.9 / (std::abs(chi) * p.a), phi);
-    const double sx = g(rng), sy = g(rng);
-    return ContactKinematics::fromSlips(base + noise * Eigen::Vector2d(sx, 0.3 * sy), phi, chi, 1.0);
-  }
-};
-
-// One seeded random noisy history (slips and spins from 1e-3 of the envelope to all of it, noise 1e-3 to 1e-1,
-// 0.03-2.5 patch radii a message at V_r = 1 m/s, three in ten ending parked with spin) on the lattices of `coarse` and
-// `fine` (the same but for the resolution): each(coarse answer, fine answer) for its last 12 of 24 messages.
+// One seeded random noisy history (test::drawNoisyHistory) on the lattices of `coarse` and `fine` (the same but for
+// the resolution): each(coarse answer, fine answer) for its last 12 of 24 messages.
 template <class Each>
 void compareAlongNoisyHistory(std::mt19937_64& rng, const BrushParameters& coarse, const BrushParameters& fine,
                               Each each)
 {
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  const BrushParameters& p = coarse;
-  const double scale = std::pow(10.0, -3.0 * u(rng));
-  const Eigen::Vector2d base = scale * Eigen::Vector2d(0.3 * (2.0 * u(rng) - 1.0), 0.1 * (2.0 * u(rng) - 1.0));
-  const double a_phi = scale * (2.0 * u(rng) - 1.0);
-  const double noise = std::pow(10.0, -3.0 + 2.0 * u(rng));
-  const double dt = std::pow(10.0, -1.5 + 1.9 * u(rng)) * p.a;  // at V_r = 1 m/s
-  const double chi = -0.5 + 2.0 * u(rng);
-  const bool parked = u(rng) < 0.3;
-  const NoisyHistory history{ base, a_phi, noise, chi, chi };
+  const test::NoisyHistoryDraw draw = test::drawNoisyHistory(rng, coarse);
   BrushTransient coarse_model(coarse), fine_model(fine);
   for (int m = 0; m < 24; ++m)
   {
-    const ContactKinematics k = history.message(rng, parked && m >= 16, p);
-    const double step = m == 0 ? 0.0 : dt;
+    const ContactKinematics k = draw.history.message(rng, draw.parked && m >= 16, coarse);
+    const double step = m == 0 ? 0.0 : draw.dt;
     const BrushForces c = coarse_model.update(k, step), f = fine_model.update(k, step);
     if (m >= 12)
       each(c, f);
@@ -597,7 +556,7 @@ TEST(BrushTransient, WholeStepsAgreeWithSubstepsOnNoisyHistories)
       const double a_phi = scale * (2.0 * u(rng) - 1.0), noise = std::pow(10.0, -3.0 + 2.0 * u(rng));
       const double dt = std::pow(10.0, -1.5 + 1.9 * u(rng)) * p.a;  // at V_r = 1 m/s
       const bool parked = u(rng) < 0.3;
-      const NoisyHistory history{ base, a_phi, noise, 1.0, 0.0 };
+      const test::NoisyHistory history{ base, a_phi, noise, 1.0, 0.0 };
       BrushTransient whole(p), substeps(p);
       substeps.setStepping(TransientStepping::Substeps);
       for (int m = 0; m < 24; ++m)
