@@ -131,7 +131,7 @@ std::vector<sce::ContactKinematics> noisyFigure4Steps(unsigned seed, int count)
 }
 
 // The same with noise on the slips and the spin at every step (recorded odometry): the inputs are never held, so the
-// rows' correction (no tilt) is re-evaluated each patch radius of travel.
+// rows' correction (no tilt) is re-evaluated each patch diameter of travel.
 void BM_BrushTransientNoisyStep(benchmark::State& state)
 {
   sce::BrushTransient model(figure4(static_cast<int>(state.range(0)), state.range(1) != 0, lawArg(state.range(2))));

@@ -509,7 +509,7 @@ def transient_section(acc, g):
                 lines.append("- %s, %s: %s, at resolution %d" % (law, c["name"], describe_point(w), w["resolution"]))
     lines += ["", "One 1 ms step at 1 m/s (a 1 kHz driver) in steady rolling at σ = (0.05, 0.02), φ = 3.33 1/m,"
               " χ_γ = 0.9 on the Fig. 4 parameters, at held inputs and with noise on the slips and the spin at every"
-              " step (the rows' correction is then re-evaluated each patch radius of travel), under each law:", "",
+              " step (the rows' correction is then re-evaluated each patch diameter of travel), under each law:", "",
               "| resolution | " + " | ".join("%s: time | %s: tilt | %s: noisy | %s: noisy, tilt" % ((law,) * 4)
                                               for law in laws) + " |", "|---|" + "---|" * (4 * len(laws))]
     for n in sorted(set(n for _, n, _ in g["transient"])):

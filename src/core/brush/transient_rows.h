@@ -14,7 +14,7 @@ namespace sphere_contact_estimator
 /// the rolling direction). The lattice sum is a midpoint rule across the rows; the steady field of the inputs, whose
 /// integral and row integrals are known exactly, corrects it by that rule's error on the field, so that at held inputs
 /// re-adhering streaks narrower than a spacing cancel. The field is re-evaluated where the rows moved, or for other
-/// inputs once they held over an update or a patch radius was rolled since (between, the last field is a control
+/// inputs once they held over an update or a patch diameter was rolled since (between, the last field is a control
 /// variate as good as any: the correction stays exact for whatever field it uses), within the work it is given; an
 /// evaluation that does not converge within it corrects nothing.
 class TransientRows
