@@ -32,7 +32,7 @@ constexpr double kEdgeShare = 1e-2;  // of the tolerance: a piece that holds les
 constexpr double kInset = 0.3;
 constexpr double kDeepInset = 0.01831563888873418;  // e^-4: where kInset would leave the steps too little
 // Between them 0.06 (e^-2.8), where that leaves the steps enough: the deep inset's first two steps (two units of s each,
-// the longest) held a few per cent of their shares. Fig. 4 set: median work -2 % at 1e-3, -1 % at 1e-4.
+// the longest) held a few per cent of their shares. Fig. 4 set: median instructions -2 % at 1e-3, -1 % at 1e-4.
 constexpr double kInsetRung = 0.2;
 // A step whose estimate is over its share (density * travel) is taken, up to this many shares, where the piece's earlier
 // steps left that much of theirs unused, so that the piece's sum stays within the piece's share: the steps from the rim
