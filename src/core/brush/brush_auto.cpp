@@ -368,8 +368,14 @@ void BrushAuto::rollOnProbation(const ContactKinematics& kin, const Slips& s, do
     probation_ = false;
     return;
   }
-  stepLattice(*transient_, transient_resolution_, kin, s, dt);
-  entry_error_ *= lag_->slowest(s.V_r * dt / (0.5 * longestPath(p_) / p_.a));
+  stepTransient(kin, s, dt);
+}
+
+BrushForces BrushAuto::stepTransient(const ContactKinematics& kin, const Slips& s, double dt)
+{
+  const BrushForces f = stepLattice(*transient_, transient_resolution_, kin, s, dt);
+  entry_error_ *= lag_->slowest(s.V_r * dt / (0.5 * longestPath(p_) / p_.a));  // the slowest renewal
+  return f;
 }
 
 BrushForces BrushAuto::stepLattice(BrushTransient& lattice, int resolution, const ContactKinematics& kin,
@@ -393,8 +399,7 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
     easy_travel_ = 0.0;
   }
   resolution = transient_resolution_;
-  BrushForces out = stepLattice(*transient_, resolution, kin, s, dt);
-  entry_error_ *= lag_->slowest(s.V_r * dt / (0.5 * longestPath(p_) / p_.a));  // the slowest renewal
+  BrushForces out = stepTransient(kin, s, dt);
   out.error_estimate += entry_error_;
   // A missed target asks for twice the resolution. Rolling, a finer lattice starts beside this one (warm, in
   // the steady state of these inputs) and takes over once it has rolled the longest path: then every bristle

@@ -119,6 +119,8 @@ private:
   // One step of a lattice at its resolution within what is left of the budget: its work spent and its cost counted.
   BrushForces stepLattice(BrushTransient& lattice, int resolution, const ContactKinematics& kin, const Slips& s,
                           double dt);
+  // The transient model's own lattice one step on (stepLattice), and the entry error decayed at its slowest renewal.
+  BrushForces stepTransient(const ContactKinematics& kin, const Slips& s, double dt);
   double effectiveTarget() const;
   long remaining() const { return std::max(1L, work_budget_ - spent_); }
 

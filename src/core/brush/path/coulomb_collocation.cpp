@@ -428,6 +428,7 @@ bool Collocation::run(const SlideStart& start, SlideEnd& end, SlideStart& resume
   bool in_run = true;
   double run_from = start.from_rim ? 0.0 : tau_a;
   double h = std::min((start.from_rim ? 2.0 : 1.0) * map_.longestStep(), s_end - s);  // the rim: on the slow manifold
+  const double longest = 2.0 * map_.longestStep();  // beyond, the estimates' models were seen to fail
   double slack = 0.0;    // what the accepted steps left of their shares of the tolerance
   bool rejected = true;  // RADAU5 filters its estimate once more on a first or rejected step
   bool done = false, re_adheres = false;
@@ -703,8 +704,8 @@ bool Collocation::run(const SlideStart& start, SlideEnd& end, SlideStart& resume
       break;
     }
     h = step * std::clamp(0.85 / std::sqrt(std::sqrt(std::max(over, 1e-12))), 0.2, 3.0);
-    h = std::min(h, 2.0 * map_.longestStep());  // beyond, the estimates' models were seen to fail
-    if (const double rest = s_end - s; rest > h && rest <= kStretch * h && rest <= 2.0 * map_.longestStep())
+    h = std::min(h, longest);
+    if (const double rest = s_end - s; rest > h && rest <= kStretch * h && rest <= longest)
       h = rest;
   }
 
