@@ -50,6 +50,7 @@ EstimatorSettings settingsFromConfig(const ContactEstimatorConfig& c)
   s.mass_per_length = c.mass_per_length;
   s.effective_length = c.effective_length;
   s.propagate_covariance = c.propagate_covariance;
+  s.covariance_period = c.covariance_period;
   s.auto_noise_fraction = c.auto_noise_fraction;
   return s;
 }

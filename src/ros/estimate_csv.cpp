@@ -19,7 +19,7 @@ EstimateCsv::EstimateCsv(std::ostream& out, const std::vector<std::string>& prea
           "brush_valid,"
           "brush_power,rr_model,rr_speed,rr_h,rr_xi_plus,rr_xi_minus,rr_force,rr_torque,rr_mu_roll,rr_regime,"
           "rr_flags,rr_valid,rr_power,valid,flags,compute_time,covariance_status,brush_covariance_method,brush_fx_std,"
-          "brush_fy_std,brush_mz_std,rr_force_std,brush_accuracy_target,sliding_law,motion_to_noise,work\n";
+          "brush_fy_std,brush_mz_std,rr_force_std,brush_accuracy_target,sliding_law,motion_to_noise,work,brush_covariance_age\n";
 }
 
 namespace
@@ -127,6 +127,7 @@ void EstimateCsv::write(const ContactEstimate& e)
   w.i(e.sliding_law);  // as brush_model: the message's constants, coulomb (0) or rigid (1), so every column is numeric
   w.g(e.motion_to_noise, 4);
   w.i(e.work);
+  w.g(e.brush_covariance_age, 4);
   out_ << w.text();
 }
 

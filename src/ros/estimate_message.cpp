@@ -116,6 +116,7 @@ void toMessage(const ContactEstimateData& e, ContactEstimate& m)
   m.brush_covariance_method = static_cast<uint8_t>(v.brush_method);
   for (int i = 0; i < 9; ++i)
     m.brush_covariance[i] = v.brush_method == CovarianceMethod::None ? (i == 0 ? -1.0 : 0.0) : v.brush(i / 3, i % 3);
+  m.brush_covariance_age = v.brush_age;
   m.rolling_resistance_force_variance =
       v.rolling_resistance_method == CovarianceMethod::None ? -1.0 : v.rolling_resistance_force_variance;
 

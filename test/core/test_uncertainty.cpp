@@ -406,6 +406,87 @@ TEST(EstimateCovariance, TwistCovarianceAgainstMonteCarlo)
   }
 }
 
+TEST(EstimateCovariance, HeldForCovariancePeriodThenPropagatedAgain)
+{
+  // A 1 kHz stream with a noisy slip: within covariance_period of the last propagation a message carries that
+  // covariance (its age on it), at the period's end it is propagated again; a changed twist covariance, a reset, an
+  // out-of-order stamp or a period of 0 propagate at once.
+  for (const double period : { 0.005, 0.0 })
+  {
+    EstimatorSettings settings = steadySettings(BrushModelKind::Steady);
+    settings.accuracy_target = 1e-3;
+    settings.covariance_period = period;
+    ContactEstimator estimator(settings);
+    std::mt19937_64 rng(7);
+    std::normal_distribution<double> noise(0.0, 0.002);
+    Eigen::Matrix<double, 6, 1> sd;
+    sd << 0.002, 0.002, 0.0, 0.005, 0.005, 0.01;
+    const TwistCovariance twist = sd.cwiseAbs2().asDiagonal();
+    Eigen::Matrix3d last_fresh = Eigen::Matrix3d::Constant(NAN);
+    double last_fresh_stamp = NAN;
+    int fresh = 0;
+    for (int k = 0; k < 40; ++k)
+    {
+      EstimatorInput in = rolling(1.0, 0.02 + noise(rng), -0.01 + noise(rng), 0.5, 0.3);
+      in.stamp = 1.0 + 1e-3 * k;
+      in.twist_covariance = twist;
+      if (k == 17)
+        in.twist_covariance(5, 5) *= 1.5;  // the source's covariance changes: propagated at once
+      if (k == 18)
+        in.twist_covariance = twist;
+      if (k == 29)
+        in.stamp = last_fresh_stamp - 5e-4;  // out of order within stamp_tolerance, before the last propagation
+      const ContactEstimateData* d = estimator.update(in);
+      ASSERT_NE(d, nullptr);
+      const CovarianceStatus status = d->covariance.status;
+      ASSERT_TRUE(status == CovarianceStatus::Ok || status == CovarianceStatus::Approximate) << k;
+      ASSERT_EQ(d->covariance.brush_method, CovarianceMethod::Unscented) << k;
+      const bool expect_fresh = period == 0.0 || k == 0 || k == 17 || k == 18 || k == 29 ||
+                                !(in.stamp - last_fresh_stamp < period);
+      if (expect_fresh)
+      {
+        EXPECT_EQ(d->covariance.brush_age, 0.0) << k;
+        if (k > 0)
+        {
+          EXPECT_NE(d->covariance.brush, last_fresh) << k;  // of this message's slips
+        }
+        last_fresh = d->covariance.brush;
+        last_fresh_stamp = in.stamp;
+        ++fresh;
+      }
+      else
+      {
+        EXPECT_NEAR(d->covariance.brush_age, in.stamp - last_fresh_stamp, 1e-12) << k;
+        EXPECT_EQ(d->covariance.brush, last_fresh) << k;
+      }
+    }
+    if (period == 0.0)
+    {
+      EXPECT_EQ(fresh, 40);
+    }
+    else
+    {
+      EXPECT_LE(fresh, 12);  // about every fifth, and the four that had to be
+    }
+  }
+  // a reset forgets it: a stamp that goes back beyond the tolerance propagates again
+  EstimatorSettings settings = steadySettings(BrushModelKind::Steady);
+  settings.accuracy_target = 1e-3;
+  ContactEstimator estimator(settings);
+  EstimatorInput in = rolling(1.0, 0.02, -0.01, 0.5, 0.3);
+  Eigen::Matrix<double, 6, 1> sd;
+  sd << 0.002, 0.002, 0.0, 0.005, 0.005, 0.01;
+  in.twist_covariance = sd.cwiseAbs2().asDiagonal();
+  in.stamp = 2.0;
+  ASSERT_NE(estimator.update(in), nullptr);
+  in.stamp = 2.001;
+  EXPECT_GT(estimator.update(in)->covariance.brush_age, 0.0);
+  in.stamp = 1.0;
+  const ContactEstimateData* d = estimator.update(in);
+  EXPECT_TRUE(d->flags & estimate_flags::kTimeJumpReset);
+  EXPECT_EQ(d->covariance.brush_age, 0.0);
+}
+
 TEST(EstimateCovariance, HostileCovariancesAndStandstill)
 {
   const EstimatorSettings settings = steadySettings(BrushModelKind::Steady);

@@ -58,6 +58,7 @@ TEST(Parameters, CfgDefaultsAreTheCoreDefaults)
   SAME(effective_length);
   SAME(propagate_covariance);
   SAME(auto_noise_fraction);
+  SAME(covariance_period);
 #undef SAME
 }
 

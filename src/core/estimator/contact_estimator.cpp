@@ -70,6 +70,7 @@ void ContactEstimator::configure(const EstimatorSettings& next)
   if (brush_changes)
     rebuildBrush(next);
   settings_ = next;
+  held_covariance_.valid = false;
   adopt();
 }
 
@@ -99,6 +100,7 @@ void ContactEstimator::reset()
   heading_ = 0.0;
   turn_rate_ = 0.0;
   not_rolling_time_ = 0.0;
+  held_covariance_.valid = false;
   if (brush_)
     brush_->reset();
 }
@@ -366,7 +368,27 @@ void ContactEstimator::judgeMotion(const EstimatorInput& in, ContactEstimateData
     o.flags |= estimate_flags::kMotionWithinNoise;
 }
 
-void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double speed, ContactEstimateData& o) const
+bool ContactEstimator::reuseBrushCovariance(const Eigen::Matrix<double, 5, 5>& S, const ContactEstimateData& o) const
+{
+  // the last propagation, if it was within covariance_period before this stamp (not after: an out-of-order stamp), of
+  // the same twist covariance and brush parameters, and nothing since was reset or re-initialised
+  const HeldCovariance& h = held_covariance_;
+  const double age = o.stamp - h.stamp;
+  constexpr std::uint32_t kFresh =
+      estimate_flags::kTimeJumpReset | estimate_flags::kGapReset | estimate_flags::kHeadingReset;
+  if (!(h.valid && settings_.covariance_period > 0.0 && age >= 0.0 && age < settings_.covariance_period &&
+        !(o.flags & kFresh) && brush_->parameters() == h.parameters))
+    return false;
+  // the same twist covariance up to rounding: each element within 1e-9 of its scale sqrt(S_ii S_jj) (the ground frame's
+  // turn of an isotropic covariance changes its last bits)
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j)
+      if (!(std::abs(S(i, j) - h.twist(i, j)) <= 1e-9 * std::sqrt(h.twist(i, i) * h.twist(j, j))))
+        return false;
+  return true;
+}
+
+void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double speed, ContactEstimateData& o)
 {
   // the twist's covariance to the slips by the exact Jacobian of eqs. 2, 12, 13, then through the brush model
   EstimateCovariance& c = o.covariance;
@@ -394,8 +416,23 @@ void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double
   if (!o.slips_defined)
   {
     c.status = CovarianceStatus::Undefined;  // no slips at standstill: the forces have no stateless map here
+    held_covariance_.valid = false;
     return;
   }
+  // the slips divide by V_r: where its spread reaches the standstill speed, the linearisation is out of its range
+  const bool near_standstill = speed - 3.0 * std::sqrt(c.rolling_speed_variance) < settings_.standstill_speed;
+  if (reuseBrushCovariance(S, o))
+  {
+    const HeldCovariance& h = held_covariance_;
+    c.brush = h.brush;
+    c.brush_method = h.method;
+    c.brush_spread = h.spread;
+    c.brush_age = o.stamp - h.stamp;
+    if (near_standstill || !h.smooth)
+      c.status = CovarianceStatus::Approximate;
+    return;
+  }
+  held_covariance_.valid = false;
   const Eigen::Matrix<double, 4, 5> K = slipJacobian(in.omega, in.v_contact.head<2>(), R, heading_);
   Eigen::Matrix4d slips = K * S * K.transpose();
   slips = 0.5 * (slips + slips.transpose());
@@ -431,10 +468,10 @@ void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double
     c.status = CovarianceStatus::Invalid;
     return;
   }
-  // the slips divide by V_r: where its spread reaches the standstill speed, the linearisation is out of its range;
-  // and where the forces kink or jump over the spread, the transform's moments are only approximate
-  if (speed - 3.0 * std::sqrt(c.rolling_speed_variance) < settings_.standstill_speed || !f.smooth)
+  // where the forces kink or jump over the spread, the transform's moments are only approximate
+  if (near_standstill || !f.smooth)
     c.status = CovarianceStatus::Approximate;
+  held_covariance_ = HeldCovariance{ true, o.stamp, S, p, c.brush, c.brush_method, c.brush_spread, f.smooth };
 }
 
 void ContactEstimator::propagateRollingResistanceCovariance(double speed, ContactEstimateData& o) const

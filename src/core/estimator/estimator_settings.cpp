@@ -67,6 +67,8 @@ void EstimatorSettings::validate() const
           "finite and >= 0 [kg/m] (0: load / (gravity effective_length))");
   require(finite(auto_noise_fraction) && auto_noise_fraction >= 0.0 && auto_noise_fraction <= 1.0,
           "auto_noise_fraction", auto_noise_fraction, "in [0, 1]");
+  require(finite(covariance_period) && covariance_period >= 0.0 && covariance_period <= max_step, "covariance_period",
+          covariance_period, "finite, >= 0 and <= max_step [s]");
   // the models' own checks, with the node's parameter names in front
   try
   {

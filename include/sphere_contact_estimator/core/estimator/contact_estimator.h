@@ -184,7 +184,8 @@ private:
   void clearBrush(ContactEstimateData& out) const;  // no brush answer: the configured model's, zero
   void runBrush(const ContactKinematics& kin, double dt, double omega_z, ContactEstimateData& out);
   void runRollingResistance(double speed, ContactEstimateData& out) const;
-  void propagateBrushCovariance(const EstimatorInput& in, double speed, ContactEstimateData& out) const;
+  void propagateBrushCovariance(const EstimatorInput& in, double speed, ContactEstimateData& out);
+  bool reuseBrushCovariance(const Eigen::Matrix<double, 5, 5>& S, const ContactEstimateData& out) const;
   void propagateRollingResistanceCovariance(double speed, ContactEstimateData& out) const;
   bool slipsRepresentable(const EstimatorInput& in, const Eigen::Vector2d& V_r, double speed) const;
   void rebuildBrush(const EstimatorSettings& next);
@@ -205,6 +206,18 @@ private:
   double turn_rate_ = 0.0;
   std::uint64_t faults_ = 0;
   std::string last_fault_;
+  // the brush covariance last propagated (covariance_period): what it was of, and when
+  struct HeldCovariance
+  {
+    bool valid = false;
+    double stamp = 0.0;
+    Eigen::Matrix<double, 5, 5> twist = Eigen::Matrix<double, 5, 5>::Zero();  // the used twist covariance
+    BrushParameters parameters;
+    Eigen::Matrix3d brush = Eigen::Matrix3d::Zero();  // ROS contact frame
+    CovarianceMethod method = CovarianceMethod::None;
+    double spread = 0.0;
+    bool smooth = true;
+  } held_covariance_;
 };
 
 }  // namespace sphere_contact_estimator

@@ -18,6 +18,7 @@ struct EstimateCovariance
   CovarianceMethod brush_method = CovarianceMethod::None;
   Eigen::Matrix3d brush = Eigen::Matrix3d::Zero();  ///< of (F_x, F_y, M_z), ROS contact frame [N^2, N^2 m, N^2 m^2]
   double brush_spread = 0.0;  ///< max(sd F_x, sd F_y, sd M_z / a) / (mu F_z), the unit of accuracy_target
+  double brush_age = 0.0;     ///< how long ago the brush covariance was propagated (covariance_period) [s]
   CovarianceMethod rolling_resistance_method = CovarianceMethod::None;
   double rolling_speed_variance = 0.0;             ///< of V_r [m^2/s^2]
   double rolling_resistance_force_variance = 0.0;  ///< of F_R L [N^2]

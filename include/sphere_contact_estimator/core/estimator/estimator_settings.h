@@ -66,6 +66,11 @@ struct EstimatorSettings
   bool propagate_covariance = true;  ///< carry the odometry's twist covariance to the outputs
   double auto_noise_fraction = 0.25; ///< auto's target rises to this fraction of the forces' propagated standard
                                      ///< deviation where that is larger (0: never) [-]
+  /// The brush covariance's sigma points are propagated again once this long has passed since the last time; a message
+  /// sooner carries the last one (EstimateCovariance::brush_age says how old), as long as the twist covariance and the
+  /// brush parameters are the same and nothing was reset. It is the forces' sensitivity to an input error held over a
+  /// transit (docs/uncertainty.md), which a faster source does not resolve better. 0: at every message [s]
+  double covariance_period = 0.005;
 
   /// F_z [N].
   double verticalLoad() const { return load > 0.0 ? load : robot_mass * gravity; }
