@@ -223,6 +223,68 @@ double BristleAdvance::returnMapping(BristleState& s, const Along& p, double tau
   return tn > b_end ? b_end / tn : 1.0;  // how a direction error carried into the step shrinks
 }
 
+bool BristleAdvance::exponentialStep(const Along& p, const Point& q0, const Point& q1, double w0, double w1,
+                                     const Eigen::Vector2d& e0, double tau, double d, bool bounded,
+                                     Exponential& out) const
+{
+  // In the drive's frame, delta = theta - arg w obeys delta' = -lambda sin delta - omega with lambda = |w| / b and
+  // omega = (w x w') / |w|^2 the drive's turn; T = tan(delta / 2) obeys T' = -lambda T - (omega / 2) (1 + T^2), so that
+  // T(d) = e^{-Lambda} T0 - (1 - e^{-Lambda}) <g>, g = omega (1 + T^2) / (2 lambda) averaged with the positive kernel
+  // lambda e^{-(Lambda(d) - Lambda(s))} / (1 - e^{-Lambda}), Lambda the integral of lambda (Simpson). The step takes
+  // g at the end, T1 = e^{-Lambda} T0 - (1 - e^{-Lambda}) g(T1): a quadratic; on the slow manifold that is the lag,
+  // delta ~ -omega / lambda. Its error, 2 b |dT| (|d theta| <= 2 |dT|): with `bounded`, (1 - e^{-Lambda}) times the
+  // range of g over the step (ratios omega / lambda at its ends and middle, 1 + T^2 between T0's and T1's), at any pull;
+  // else (stiff: the kernel's weight lies at the end) the same with the midpoint's omega / lambda; and Lambda's by the
+  // trapezoid's difference from Simpson's.
+  const Point qm = at(p, tau + 0.5 * d);
+  const double wm = qm.w.norm();
+  if (!(w0 > 0.0 && wm > 0.0 && w1 > 0.0 && q1.b > 0.0 && qm.b > 0.0))
+    return false;  // a drive through zero, or no bound
+  const double l0 = w0 / std::max(q0.b, 1e-300), lm = wm / qm.b, l1 = w1 / q1.b;
+  const double om_m = (qm.w.x() * w_dot_.y() - qm.w.y() * w_dot_.x()) / (wm * wm);
+  const double om_1 = (q1.w.x() * w_dot_.y() - q1.w.y() * w_dot_.x()) / (w1 * w1);
+  // the start's angle from the drive
+  const Eigen::Vector2d h0 = q0.w / w0, h1 = q1.w / w1;
+  const double c0 = e0.dot(h0), s0 = h0.x() * e0.y() - h0.y() * e0.x();
+  const double Lambda = std::isfinite(l0) ? d / 6.0 * (l0 + 4.0 * lm + l1) : INFINITY;
+  const double Lambda_trap = std::isfinite(l0) ? d / 4.0 * (l0 + 2.0 * lm + l1) : INFINITY;
+  const double E = std::exp(-Lambda);
+  const double T0 = c0 > -1.0 ? s0 / (1.0 + c0) : INFINITY;
+  const auto solve = [&](double ratio, double& T1) {
+    const double kappa = (1.0 - E) * 0.5 * ratio, c = kappa - (std::isfinite(T0) ? E * T0 : 0.0);
+    const double disc = 1.0 - 4.0 * kappa * c;
+    if (!(disc >= 0.0) || !std::isfinite(T0))
+      return false;
+    T1 = -2.0 * c / (1.0 + std::sqrt(disc));
+    return true;
+  };
+  double T1, T1m;
+  if (!(c0 > 0.0 && solve(om_1 / l1, T1) && solve(om_m / lm, T1m) && std::abs(T1) <= 1.0))
+    return false;  // no slow manifold within the step
+  double turn = std::abs(T1 - T1m);
+  if (bounded)
+  {
+    const double om_0 = (q0.w.x() * w_dot_.y() - q0.w.y() * w_dot_.x()) / (w0 * w0);
+    const double r[3] = { 0.5 * om_0 / l0, 0.5 * om_m / lm, 0.5 * om_1 / l1 };
+    const double f_hi = 1.0 + std::max(T0 * T0, T1 * T1), f_lo = 1.0 + (T0 * T1 > 0.0 ? std::min(T0 * T0, T1 * T1) : 0.0);
+    double g_min = INFINITY, g_max = -INFINITY;
+    for (double ri : r)
+      for (double f : { f_lo, f_hi })
+      {
+        g_min = std::min(g_min, ri * f);
+        g_max = std::max(g_max, ri * f);
+      }
+    turn = (1.0 - E) * (g_max - g_min);
+  }
+  out.error = 2.0 * q1.b * (turn + E * std::abs(T0) * std::abs(Lambda - Lambda_trap));
+  const double T2 = T1 * T1, n = 1.0 / (1.0 + T2), cd = (1.0 - T2) * n, sd = 2.0 * T1 * n;
+  out.e1 = Eigen::Vector2d(cd * h1.x() - sd * h1.y(), sd * h1.x() + cd * h1.y());
+  // pushed outward at the end and the middle (with bounded, at the middle along the nearer of the ends' angles)
+  out.pushed = w1 * cd - q1.b_dot >= 0.0 && wm * std::min(bounded ? c0 : 1.0, cd) - qm.b_dot >= 0.0;
+  out.Lambda = Lambda;
+  return true;
+}
+
 double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_start, double span, int& steps,
                                     int max_steps) const
 {
@@ -251,6 +313,7 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
   double tau = 0.0;
   double step = span;
   bool to_event = false;  // a re-adhesion was located in a step: the step to it is being taken
+  const double turn = p.w.x() * w_dot_.y() - p.w.y() * w_dot_.x();  // w x w', the drive's turn times |w|^2
   {
     const Point q = at(p, 0.0);
     if (q.b > 0.0 && s.u.squaredNorm() > 0.0 && pushing(q, s.u / s.u.norm()) < 0.0)
@@ -296,16 +359,37 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
       tau += d;
       continue;
     }
-    const double pull = std::max(q0.w.norm(), q1.w.norm()) / std::max(b_min, 1e-300);
+    const double w0 = q0.w.norm(), w1 = q1.w.norm();
+    const double pull = std::max(w0, w1) / std::max(b_min, 1e-300);
     ++steps;
     bool stiff = pull * d > 3.0;
     double k[7], t[7], P[7], Q[7];  // P = w . e0, Q = e0 x w at the stages
     Point q[7];
     bool turned = false;
-    const double un = s.u.norm(), w0n = q0.w.norm();
+    const double un = s.u.norm();
     // (on the rim the bound, and u, vanish: the drive's direction)
     const Eigen::Vector2d e0 = un > 0.0 ? Eigen::Vector2d(s.u / un)
-                                        : (w0n > 0.0 ? Eigen::Vector2d(q0.w / w0n) : Eigen::Vector2d(1.0, 0.0));
+                                        : (w0 > 0.0 ? Eigen::Vector2d(q0.w / w0) : Eigen::Vector2d(1.0, 0.0));
+    // Not stiff, but where the drive's turn against its pull, omega / lambda, changes little over the step (spin in
+    // place, a slow pivot: the slow manifold's lag barely moves), the exponential step with its bounded error first:
+    // a few dozen operations against the pair's seven stages. (Its turn term is at most (1 - e^{-Lambda}) times the
+    // range of g <= 2 |ratio| over the step: where the ends' ratios alone rule it out, it is not tried.)
+    if (!stiff && q0.b > 0.0 && q1.b > 0.0 && w0 > 0.0 && w1 > 0.0)
+    {
+      // omega / (2 lambda) = (w x w') b / (2 |w|^3), w x w' the same along the piece (w is affine in tau)
+      const double decay = 0.5 * d * (w0 / q0.b + w1 / q1.b);  // >= 1 - e^{-Lambda} to first order
+      const double ratio_change = q1.b / (w1 * w1 * w1) - q0.b / (w0 * w0 * w0);
+      Exponential x;
+      if (q1.b * decay * std::abs(turn * ratio_change) <= 0.5 * tolerance_ &&
+          exponentialStep(p, q0, q1, w0, w1, e0, tau, d, true, x) && x.error <= tolerance_ && x.pushed)
+      {
+        s.step_error = s.step_error * std::min(1.0, q1.b / q0.b) / (1.0 + x.Lambda) + x.error;
+        s.u = q1.b * x.e1;
+        tau += d;
+        step = x.error > 0.0 ? d * std::min(4.0, 0.9 * std::sqrt(tolerance_ / x.error)) : 4.0 * d;
+        continue;
+      }
+    }
     if (!stiff)
     {
       for (int i = 0; i < 7; ++i)
@@ -327,55 +411,22 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
     }
     if (stiff)
     {
-      // Stiff over this step: in the drive's frame, delta = theta - arg w obeys delta' = -lambda sin delta - omega with
-      // lambda = |w| / b and omega = (w x w') / |w|^2 the drive's turn; T = tan(delta / 2) obeys
-      // T' = -lambda T - (omega / 2) (1 + T^2). The exponential step takes the decay exactly, e^{-Lambda} with Lambda
-      // the integral of lambda (Simpson), and the drive's turn implicitly at the end, where the kernel e^{-(Lambda(d) -
-      // Lambda(s))} holds its weight: T1 = e^{-Lambda} T0 - (1 - e^{-Lambda}) omega_1 / (2 lambda_1) (1 + T1^2), a
-      // quadratic. On the slow manifold that is its lag, delta ~ -omega / lambda. Its error: the same with the
-      // midpoint's omega / lambda, and Lambda's by the trapezoid's difference from Simpson's.
-      const Point qm = at(p, tau + 0.5 * d);
-      const double w0 = q0.w.norm(), wm = qm.w.norm(), w1 = q1.w.norm();
-      if (w0 > 0.0 && wm > 0.0 && w1 > 0.0 && q1.b > 0.0 && qm.b > 0.0)
+      // stiff over this step: the exponential step (exponentialStep), its error estimated by the midpoint's turn
+      Exponential x;
+      if (exponentialStep(p, q0, q1, w0, w1, e0, tau, d, false, x))
       {
-        const double l0 = w0 / std::max(q0.b, 1e-300), lm = wm / qm.b, l1 = w1 / q1.b;
-        const double om_m = (qm.w.x() * w_dot_.y() - qm.w.y() * w_dot_.x()) / (wm * wm);
-        const double om_1 = (q1.w.x() * w_dot_.y() - q1.w.y() * w_dot_.x()) / (w1 * w1);
-        // the start's angle from the drive
-        const Eigen::Vector2d h0 = q0.w / w0, h1 = q1.w / w1;
-        const double c0 = e0.dot(h0), s0 = h0.x() * e0.y() - h0.y() * e0.x();
-        const double Lambda = std::isfinite(l0) ? d / 6.0 * (l0 + 4.0 * lm + l1) : INFINITY;
-        const double Lambda_trap = std::isfinite(l0) ? d / 4.0 * (l0 + 2.0 * lm + l1) : INFINITY;
-        const double E = std::exp(-Lambda);
-        const double T0 = c0 > -1.0 ? s0 / (1.0 + c0) : INFINITY;
-        const auto solve = [&](double ratio, double& T1) {
-          const double kappa = (1.0 - E) * 0.5 * ratio, c = kappa - (std::isfinite(T0) ? E * T0 : 0.0);
-          const double disc = 1.0 - 4.0 * kappa * c;
-          if (!(disc >= 0.0) || !std::isfinite(T0))
-            return false;
-          T1 = -2.0 * c / (1.0 + std::sqrt(disc));
-          return true;
-        };
-        double T1, T1m;
-        if (c0 > 0.0 && solve(om_1 / l1, T1) && solve(om_m / lm, T1m) && std::abs(T1) <= 1.0)
+        if (x.error <= tolerance_ && x.pushed)
         {
-          const double error = 2.0 * q1.b * (std::abs(T1 - T1m) + E * std::abs(T0) * std::abs(Lambda - Lambda_trap));
-          const double T2 = T1 * T1, n = 1.0 / (1.0 + T2), cd = (1.0 - T2) * n, sd = 2.0 * T1 * n;
-          const Eigen::Vector2d e1(cd * h1.x() - sd * h1.y(), sd * h1.x() + cd * h1.y());
-          const bool pushed = w1 * cd - q1.b_dot >= 0.0 && wm * std::min(cd, 1.0) - qm.b_dot >= 0.0;
-          if (error <= tolerance_ && pushed)
-          {
-            s.step_error = s.step_error * std::min(1.0, q1.b / std::max(q0.b, 1e-300)) / (1.0 + Lambda) + error;
-            s.u = q1.b * e1;
-            tau += d;
-            step = error > 0.0 ? d * std::min(4.0, 0.9 * std::sqrt(tolerance_ / error)) : 4.0 * d;
-            continue;
-          }
-          if (pushed && d > 1e-9 * span)
-          {
-            step = d * std::max(0.2, 0.9 * std::sqrt(tolerance_ / error));
-            continue;
-          }
+          s.step_error = s.step_error * std::min(1.0, q1.b / std::max(q0.b, 1e-300)) / (1.0 + x.Lambda) + x.error;
+          s.u = q1.b * x.e1;
+          tau += d;
+          step = x.error > 0.0 ? d * std::min(4.0, 0.9 * std::sqrt(tolerance_ / x.error)) : 4.0 * d;
+          continue;
+        }
+        if (x.pushed && d > 1e-9 * span)
+        {
+          step = d * std::max(0.2, 0.9 * std::sqrt(tolerance_ / x.error));
+          continue;
         }
       }
       // else (no slow manifold, a re-adhesion in the step, or a drive through zero): the return mapping's step

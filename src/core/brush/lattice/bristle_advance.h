@@ -33,8 +33,9 @@ struct BristleState
 ///   grows along the motion faster than |w| (d(mu q_z / k)/dtau >= |w|, a polynomial condition of degree 2 or 4):
 ///   exact.
 /// - eq. (4b): on the bound u = b e, the direction's Riccati equation in the frame of each step's start by Dormand and
-///   Prince's 5(4) pair where the pull |w| / b is not stiff over the step; where it is, an exponential step in the
-///   drive's frame, else the trial deflection (the closed form over a step) scaled back onto the bound, the implicit
+///   Prince's 5(4) pair where the pull |w| / b is not stiff over the step (where the drive's turn against its pull
+///   barely changes over it, the exponential step below first, with an error that bounds the turn term's range); where
+///   it is stiff, an exponential step in the drive's frame, else the trial deflection (the closed form over a step) scaled back onto the bound, the implicit
 ///   form of eq. (4b), against two half steps; each step's error within `tolerance`. The sliding speed w.e - db/dtau is
 ///   watched at the stages (a re-adhesion located, then stepped to), and no step passes the path's entry into G
 ///   (|w| <= db/dtau), where the bristle has re-adhered at the latest. Without rolling (V_r = 0: parked, spin in
@@ -69,6 +70,18 @@ private:
     double b, b_dot;
   };
   Point at(const Along& piece, double tau) const;
+  // the exponential step of a sliding bristle's direction over [tau, tau + d] from e0 (coulombSlide; w0, w1 the drive's
+  // norms at the ends): false where it does not apply (more than a right angle from the drive, a drive through zero);
+  // bounded: its error bounds the turn term's range over the step (any pull), else estimates it by the midpoint's
+  // (stiff steps)
+  struct Exponential
+  {
+    Eigen::Vector2d e1;  // the direction at the end
+    double error, Lambda;
+    bool pushed;         // still pushed outward at the middle and the end
+  };
+  bool exponentialStep(const Along& piece, const Point& q0, const Point& q1, double w0, double w1,
+                       const Eigen::Vector2d& e0, double tau, double d, bool bounded, Exponential& out) const;
   // one return-mapping step (and two half steps) of a sliding bristle at tau along the piece; returns the factor a
   // carried direction error shrinks by
   double returnMapping(BristleState& s, const Along& piece, double tau, double d, double& error, bool& slides) const;
