@@ -101,7 +101,8 @@ Comparison compareWithFine(bool slow, unsigned seed, int count)
     if (ratio > 1.0)
       std::printf("  case %d: error %.3g, its estimate %.3g (tolerance %.3g): V_r %.3g m/s, omega_z %.3g rad/s, |V_s| "
                   "%.3g m/s, span %g s, resolution %d\n",
-                  n, (s.u - fine).norm(), s.step_error, tolerance, speed, kin.omega_z, kin.V_s.norm(), span, resolution);
+                  n, (s.u - fine).norm(), s.step_error, tolerance, speed, kin.omega_z, kin.V_s.norm(), span,
+                  resolution);
     out.worst = std::max(out.worst, ratio);
     out.over += ratio > 1.0;
     ++out.compared;

@@ -233,9 +233,9 @@ bool BristleAdvance::exponentialStep(const Along& p, const Point& q0, const Poin
   // lambda e^{-(Lambda(d) - Lambda(s))} / (1 - e^{-Lambda}), Lambda the integral of lambda (Simpson). The step takes
   // g at the end, T1 = e^{-Lambda} T0 - (1 - e^{-Lambda}) g(T1): a quadratic; on the slow manifold that is the lag,
   // delta ~ -omega / lambda. Its error, 2 b |dT| (|d theta| <= 2 |dT|): with `bounded`, (1 - e^{-Lambda}) times the
-  // range of g over the step (ratios omega / lambda at its ends and middle, 1 + T^2 between T0's and T1's), at any pull;
-  // else (stiff: the kernel's weight lies at the end) the same with the midpoint's omega / lambda; and Lambda's by the
-  // trapezoid's difference from Simpson's.
+  // range of g over the step (ratios omega / lambda at its ends and middle, 1 + T^2 between T0's and T1's), at any
+  // pull; else (stiff: the kernel's weight lies at the end) the same with the midpoint's omega / lambda; and Lambda's
+  // by the trapezoid's difference from Simpson's.
   const Point qm = at(p, tau + 0.5 * d);
   const double wm = qm.w.norm();
   if (!(w0 > 0.0 && wm > 0.0 && w1 > 0.0 && q1.b > 0.0 && qm.b > 0.0))
@@ -266,7 +266,8 @@ bool BristleAdvance::exponentialStep(const Along& p, const Point& q0, const Poin
   {
     const double om_0 = (q0.w.x() * w_dot_.y() - q0.w.y() * w_dot_.x()) / (w0 * w0);
     const double r[3] = { 0.5 * om_0 / l0, 0.5 * om_m / lm, 0.5 * om_1 / l1 };
-    const double f_hi = 1.0 + std::max(T0 * T0, T1 * T1), f_lo = 1.0 + (T0 * T1 > 0.0 ? std::min(T0 * T0, T1 * T1) : 0.0);
+    const double f_hi = 1.0 + std::max(T0 * T0, T1 * T1);
+    const double f_lo = 1.0 + (T0 * T1 > 0.0 ? std::min(T0 * T0, T1 * T1) : 0.0);
     double g_min = INFINITY, g_max = -INFINITY;
     for (double ri : r)
       for (double f : { f_lo, f_hi })
@@ -314,6 +315,14 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
   double step = span;
   bool to_event = false;  // a re-adhesion was located in a step: the step to it is being taken
   const double turn = p.w.x() * w_dot_.y() - p.w.y() * w_dot_.x();  // w x w', the drive's turn times |w|^2
+  // an exponential step taken (either branch): the carried error shrinks with the bound and by the pull's contraction,
+  // its own is added, and the next step follows from its estimate
+  const auto takeExponential = [&](const Exponential& x, double b0, double b1, double d) {
+    s.step_error = s.step_error * std::min(1.0, b1 / std::max(b0, 1e-300)) / (1.0 + x.Lambda) + x.error;
+    s.u = b1 * x.e1;
+    tau += d;
+    step = x.error > 0.0 ? d * std::min(4.0, 0.9 * std::sqrt(tolerance_ / x.error)) : 4.0 * d;
+  };
   {
     const Point q = at(p, 0.0);
     if (q.b > 0.0 && s.u.squaredNorm() > 0.0 && pushing(q, s.u / s.u.norm()) < 0.0)
@@ -383,10 +392,7 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
       if (q1.b * decay * std::abs(turn * ratio_change) <= 0.5 * tolerance_ &&
           exponentialStep(p, q0, q1, w0, w1, e0, tau, d, true, x) && x.error <= tolerance_ && x.pushed)
       {
-        s.step_error = s.step_error * std::min(1.0, q1.b / q0.b) / (1.0 + x.Lambda) + x.error;
-        s.u = q1.b * x.e1;
-        tau += d;
-        step = x.error > 0.0 ? d * std::min(4.0, 0.9 * std::sqrt(tolerance_ / x.error)) : 4.0 * d;
+        takeExponential(x, q0.b, q1.b, d);
         continue;
       }
     }
@@ -417,10 +423,7 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
       {
         if (x.error <= tolerance_ && x.pushed)
         {
-          s.step_error = s.step_error * std::min(1.0, q1.b / std::max(q0.b, 1e-300)) / (1.0 + x.Lambda) + x.error;
-          s.u = q1.b * x.e1;
-          tau += d;
-          step = x.error > 0.0 ? d * std::min(4.0, 0.9 * std::sqrt(tolerance_ / x.error)) : 4.0 * d;
+          takeExponential(x, q0.b, q1.b, d);
           continue;
         }
         if (x.pushed && d > 1e-9 * span)

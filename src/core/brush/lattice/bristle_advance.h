@@ -35,8 +35,8 @@ struct BristleState
 /// - eq. (4b): on the bound u = b e, the direction's Riccati equation in the frame of each step's start by Dormand and
 ///   Prince's 5(4) pair where the pull |w| / b is not stiff over the step (where the drive's turn against its pull
 ///   barely changes over it, the exponential step below first, with an error that bounds the turn term's range); where
-///   it is stiff, an exponential step in the drive's frame, else the trial deflection (the closed form over a step) scaled back onto the bound, the implicit
-///   form of eq. (4b), against two half steps; each step's error within `tolerance`. The sliding speed w.e - db/dtau is
+///   it is stiff, an exponential step in the drive's frame, else the trial deflection (the closed form over a step)
+///   scaled back onto the bound, the implicit form of eq. (4b), against two half steps; each step's error within `tolerance`. The sliding speed w.e - db/dtau is
 ///   watched at the stages (a re-adhesion located, then stepped to), and no step passes the path's entry into G
 ///   (|w| <= db/dtau), where the bristle has re-adhered at the latest. Without rolling (V_r = 0: parked, spin in
 ///   place) drive and bound are constant along the "path" and the direction relaxes towards the drive in closed form,
