@@ -393,6 +393,8 @@ bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
         continue;
       }
       Eigen::Vector2d x0 = x1 + dt * kin.V_r;
+      if (inside_[p] && !sliding_[p] && advance.adhereThrough(u_[p], x0, dt))
+        continue;  // most bristles: adhering, well inside their bound over the whole step (no event, no steps)
       double duration = dt;
       bool at_rim = false;
       lattice::BristleState s;

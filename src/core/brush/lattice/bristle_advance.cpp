@@ -46,6 +46,7 @@ BristleAdvance::BristleAdvance(const BrushParameters& p, const ContactKinematics
   , V_r_(kin.V_r)
   , V_s_(kin.V_s)
   , w_dot_(-kin.omega_z * kin.V_r.y(), kin.omega_z * kin.V_r.x())  // d/dtau of -A_omega_z x at dx/dtau = -V_r
+  , w_dot_norm_(w_dot_.norm())
   , omega_z_(kin.omega_z)
   , speed2_(kin.V_r.squaredNorm())
   , tolerance_(tolerance)
@@ -56,9 +57,11 @@ double BristleAdvance::onset(const Piece& s, double span, bool at_rim) const
 {
   // g = |u|^2 - (c f)^2, f^2 = t^m: a polynomial of degree <= 4 in tau
   const Eigen::Vector2d w = drive(s.x), alpha = 0.5 * w_dot_;
+  const double c2 = c_ * c_, t0 = at_rim ? 0.0 : s.t0, eps = 1e-12 * c2;
+  if (staysInside(s.u, w, t0, s.t1, s.t2, span))
+    return INFINITY;
   double g[5] = { s.u.squaredNorm(), 2.0 * s.u.dot(w), w.squaredNorm() + 2.0 * s.u.dot(alpha), 2.0 * w.dot(alpha),
                   alpha.squaredNorm() };
-  const double c2 = c_ * c_, t0 = at_rim ? 0.0 : s.t0;
   double b[5] = {};
   switch (m_)
   {
@@ -77,7 +80,6 @@ double BristleAdvance::onset(const Piece& s, double span, bool at_rim) const
   // At the start: on the bound (entering at a rim where it vanishes, re-adhered, or rounding) and moving out of it, it
   // slides at once. Moving in, the leading terms that are only rounding are set to zero: a re-adhesion is a tangency
   // (|u| and the bound grow alike there), which rounding would otherwise turn into a spurious onset just after it.
-  const double eps = 1e-12 * c2;
   if (g[0] > eps)
     return 0.0;
   if (g[0] >= -eps)
@@ -398,12 +400,9 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
     }
     if (!stiff)
     {
-      for (int i = 0; i < 7; ++i)
-      {
-        double ti = 0.0;
-        for (int j = 0; j < i; ++j)
-          ti += kA[i][j] * k[j];
-        ti *= d;
+      // stage i at t = d times the tableau's row (spelled out: its zeros skipped, its constants folded)
+      const auto stage = [&](int i, double row) {
+        const double ti = row * d;
         t[i] = ti;
         q[i] = i == 0 ? q0 : (i >= 5 ? q1 : at(p, tau + kC[i] * d));
         const double inv_b = q[i].b > 0.0 ? 1.0 / q[i].b : 0.0;
@@ -412,7 +411,14 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
         const double B = -P[i] * inv_b, A = 0.5 * Q[i] * inv_b;
         k[i] = A + ti * (B - A * ti);
         turned = turned || !(std::abs(ti) <= 1.0);  // by more than a right angle within the step: too long a step
-      }
+      };
+      stage(0, 0.0);
+      stage(1, kA[1][0] * k[0]);
+      stage(2, kA[2][0] * k[0] + kA[2][1] * k[1]);
+      stage(3, kA[3][0] * k[0] + kA[3][1] * k[1] + kA[3][2] * k[2]);
+      stage(4, kA[4][0] * k[0] + kA[4][1] * k[1] + kA[4][2] * k[2] + kA[4][3] * k[3]);
+      stage(5, kA[5][0] * k[0] + kA[5][1] * k[1] + kA[5][2] * k[2] + kA[5][3] * k[3] + kA[5][4] * k[4]);
+      stage(6, kA[6][0] * k[0] + kA[6][2] * k[2] + kA[6][3] * k[3] + kA[6][4] * k[4] + kA[6][5] * k[5]);
       stiff = turned && !(d > 1e-9 * span);  // a step the explicit pair cannot take any shorter: the return mapping's
     }
     if (stiff)

@@ -52,6 +52,18 @@ public:
   /// counted). Returns the steps taken (work).
   int advance(BristleState& s, const Eigen::Vector2d& x_start, double duration, bool at_rim, int max_steps) const;
 
+  /// An adhering bristle that cannot reach its bound within `duration` from x_start (staysInside): u advanced over it
+  /// in closed form, true (what advance() does there, without its events' machinery); else false, u untouched.
+  bool adhereThrough(Eigen::Vector2d& u, const Eigen::Vector2d& x_start, double duration) const
+  {
+    const Eigen::Vector2d w = drive(x_start);
+    if (!staysInside(u, w, 1.0 - x_start.squaredNorm() * inv_a2_, 2.0 * x_start.dot(V_r_) * inv_a2_,
+                     -speed2_ * inv_a2_, duration))
+      return false;
+    u += duration * (w + 0.5 * duration * w_dot_);
+    return true;
+  }
+
   /// The bound mu q_z / k [m] at x.
   double bound(const Eigen::Vector2d& x) const { return c_ * pressure_.shape(1.0 - x.squaredNorm() * inv_a2_); }
 
@@ -91,6 +103,18 @@ private:
   // eq. (4b)'s sliding from the piece's start over span: returns when it ended (re-adhered: < span) and the steps
   double coulombSlide(BristleState& s, const Eigen::Vector2d& x_start, double span, int& steps, int max_steps) const;
   double coulombSlideStill(BristleState& s, const Eigen::Vector2d& x, double span) const;
+  // Whether an adhering bristle with deflection u and drive w at the start, t = t0 + t1 tau + t2 tau^2, surely stays
+  // inside its bound over (0, span]: |u(tau)| <= |u| + |w| tau + |w'| tau^2 / 2, and the bound over the span is smallest
+  // at one of its ends (t is a concave quadratic, f grows with t). Where that reach stays below it by more than
+  // onset()'s rounding margin, |u|^2 - (mu q_z / k)^2 < -1e-12 c^2 throughout: no onset. Most adhering bristles lie well
+  // inside their bound: this spares them the onset's quartic.
+  bool staysInside(const Eigen::Vector2d& u, const Eigen::Vector2d& w, double t0, double t1, double t2,
+                   double span) const
+  {
+    const double reach = u.norm() + span * (w.norm() + 0.5 * span * w_dot_norm_);
+    const double b = c_ * std::min(pressure_.shape(t0), pressure_.shape(t0 + span * (t1 + span * t2)));
+    return reach * reach < b * b - 1e-12 * c_ * c_;
+  }
   Eigen::Vector2d adhere(const Eigen::Vector2d& x_start, const Eigen::Vector2d& u_start, double tau) const
   {
     return u_start + tau * (drive(x_start) + 0.5 * tau * w_dot_);
@@ -102,6 +126,7 @@ private:
   double c_;                             // the bound at the centre, mu q_z(0) / k [m]
   double inv_a2_;
   Eigen::Vector2d V_r_, V_s_, w_dot_;    // w' = d w / d tau along a path
+  double w_dot_norm_;
   double omega_z_, speed2_;
   double tolerance_;
 };
