@@ -149,8 +149,8 @@ std::uint32_t BagWriter::addConnection(const std::string& topic, std::vector<std
   return connections_.back().id;
 }
 
-std::uint32_t BagWriter::connection(const std::string& topic, const std::string& datatype, const std::string& md5sum,
-                                    const std::string& definition)
+std::uint32_t BagWriter::connection(const std::string& topic, const char* datatype, const char* md5sum,
+                                    const char* definition)
 {
   const auto it = by_topic_.find(topic);
   if (it != by_topic_.end())

@@ -68,8 +68,8 @@ private:
     std::map<std::uint32_t, std::uint32_t> counts;  // per connection
   };
 
-  std::uint32_t connection(const std::string& topic, const std::string& datatype, const std::string& md5sum,
-                           const std::string& definition);
+  // (the message traits' C strings: a message definition is kilobytes, copied only when the connection is new)
+  std::uint32_t connection(const std::string& topic, const char* datatype, const char* md5sum, const char* definition);
   std::uint32_t connection(const rosbag::MessageInstance& message, const std::string& topic);
   std::uint32_t addConnection(const std::string& topic, std::vector<std::pair<std::string, std::string>> header);
   std::uint8_t* beginMessage(std::uint32_t connection, const ros::Time& time, std::uint32_t size);

@@ -110,6 +110,11 @@ double BristleAdvance::rigidReAdhesion(const Piece& s, double span) const
   if (!(end >= 0.0))
     return INFINITY;
   const Eigen::Vector2d w = drive(s.x);
+  // Ruled out cheaply first (spinning in place the bound barely changes along the path): over [0, end] t grows and t'
+  // falls, so the bound's rate c f'(t) t' is at most c f'(t0) t1 (f' never grows with t), and the drive is at least
+  // |w| - |w'| end; where twice the one stays below the other, G is not reached.
+  if (s.t0 > 0.0 && 2.0 * c_ * pressure_.shapeSlope(s.t0) * s.t1 < w.norm() - w_dot_norm_ * end)
+    return INFINITY;
   const double w2[3] = { w.squaredNorm(), 2.0 * w.dot(w_dot_), w_dot_.squaredNorm() };
   const double c2 = c_ * c_;
   const double td2[3] = { s.t1 * s.t1, 4.0 * s.t1 * s.t2, 4.0 * s.t2 * s.t2 };  // t'^2
@@ -319,17 +324,19 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
   const double turn = p.w.x() * w_dot_.y() - p.w.y() * w_dot_.x();  // w x w', the drive's turn times |w|^2
   // an exponential step taken (either branch): the carried error shrinks with the bound and by the pull's contraction,
   // its own is added, and the next step follows from its estimate
-  const auto takeExponential = [&](const Exponential& x, double b0, double b1, double d) {
-    s.step_error = s.step_error * std::min(1.0, b1 / std::max(b0, 1e-300)) / (1.0 + x.Lambda) + x.error;
-    s.u = b1 * x.e1;
+  // (the point at the end of an accepted step is the next one's start: kept, not evaluated again)
+  Point known = at(p, 0.0);
+  double known_tau = 0.0;
+  const auto takeExponential = [&](const Exponential& x, double b0, const Point& q1, double d) {
+    s.step_error = s.step_error * std::min(1.0, q1.b / std::max(b0, 1e-300)) / (1.0 + x.Lambda) + x.error;
+    s.u = q1.b * x.e1;
     tau += d;
+    known = q1;
+    known_tau = tau;
     step = x.error > 0.0 ? d * std::min(4.0, 0.9 * std::sqrt(tolerance_ / x.error)) : 4.0 * d;
   };
-  {
-    const Point q = at(p, 0.0);
-    if (q.b > 0.0 && s.u.squaredNorm() > 0.0 && pushing(q, s.u / s.u.norm()) < 0.0)
-      return 0.0;  // the drive pulls it back at once: it re-adheres here
-  }
+  if (known.b > 0.0 && s.u.squaredNorm() > 0.0 && pushing(known, s.u / s.u.norm()) < 0.0)
+    return 0.0;  // the drive pulls it back at once: it re-adheres here
   // It slides only while pushed outward, w.e - db/dtau <= |w| - db/dtau, which turns negative where the path enters G
   // (|w| <= db/dtau, the rigid law's re-adhesion: exact): it has re-adhered there at the latest, and no step passes that
   // point (a long stiff step, checked at its middle and end, passed over the re-adhesion and slid on)
@@ -351,7 +358,7 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
       return slides ? INFINITY : span;
     }
     double d = std::min(step, end - tau);
-    const Point q0 = at(p, tau), q1 = at(p, tau + d);
+    const Point q0 = tau == known_tau ? known : at(p, tau), q1 = at(p, tau + d);
     const double b_min = std::min(q0.b, q1.b);
     // the bound along a straight path is largest at an end or at its vertex (t is a concave quadratic)
     double b_max = std::max(q0.b, q1.b);
@@ -394,7 +401,7 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
       if (q1.b * decay * std::abs(turn * ratio_change) <= 0.5 * tolerance_ &&
           exponentialStep(p, q0, q1, w0, w1, e0, tau, d, true, x) && x.error <= tolerance_ && x.pushed)
       {
-        takeExponential(x, q0.b, q1.b, d);
+        takeExponential(x, q0.b, q1, d);
         continue;
       }
     }
@@ -429,7 +436,7 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
       {
         if (x.error <= tolerance_ && x.pushed)
         {
-          takeExponential(x, q0.b, q1.b, d);
+          takeExponential(x, q0.b, q1, d);
           continue;
         }
         if (x.pushed && d > 1e-9 * span)
@@ -529,6 +536,8 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
     s.step_error = s.step_error * (q0.b > 0.0 ? std::min(1.0, q1.b / q0.b) : 1.0) * growth + error;
     s.u = q1.b * direction(t[6]);
     tau += d;
+    known = q1;
+    known_tau = tau;
     // (the controller's exponent 1/4 rather than the pair's 1/5: no pow in the loop)
     step = error > 0.0 ? d * std::min(5.0, 0.9 * std::sqrt(std::sqrt(tolerance_ / error))) : 5.0 * d;
   }
