@@ -121,5 +121,71 @@ TEST(BristleAdvance, SlidingStepErrorBoundsTheErrorInPlaceAndSlow)
   EXPECT_EQ(c.over, 0);
 }
 
+TEST(BristleAdvance, AdhereThroughIsTheAdheringAdvanceWhereItClaimsNoOnset)
+{
+  // The lattice's cheap path for an adhering bristle (BristleAdvance::adhereThrough) against the full advance with its
+  // onset search, on seeded random bristles anywhere in the patch, deflected up to just past their bound, at random
+  // drives (rolling to 2 m/s, spin either way, sliding), over 1-ms and 10-ms messages, under each pressure law. Where
+  // it claims the bristle adheres throughout, the deflection must stay within the bound along the path (sampled
+  // independently of both; it fails with the bound taken at the span's larger end instead of its smaller one), and
+  // advance() must find no onset and give the same deflection to the last bit; and it must claim a good share (else it
+  // spares nothing).
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int claimed = 0, compared = 0;
+  for (const PressureDistribution law :
+       { PressureDistribution::Parabolic, PressureDistribution::Hertzian, PressureDistribution::Uniform })
+  {
+    BrushParameters p = EstimatorSettings{}.brushParameters();
+    p.sliding_law = SlidingLaw::Coulomb;
+    p.pressure = law;
+    for (int n = 0; n < 3000; ++n)
+    {
+      const double speed = std::pow(10.0, -4.0 + 4.3 * unit(rng)), heading = 2.0 * M_PI * unit(rng);
+      ContactKinematics kin;
+      kin.V_r = speed * Eigen::Vector2d(std::cos(heading), std::sin(heading));
+      const double slide = 0.3 * unit(rng) * unit(rng), slide_heading = 2.0 * M_PI * unit(rng);
+      kin.V_s = slide * Eigen::Vector2d(std::cos(slide_heading), std::sin(slide_heading));
+      kin.omega_z = 30.0 * (unit(rng) - 0.5);
+      const double span = n % 2 == 0 ? 1e-3 : 1e-2;
+      const lattice::BristleAdvance advance(p, kin, 1e-9);
+      const double r = 0.99 * p.a * std::sqrt(unit(rng)), where = 2.0 * M_PI * unit(rng);
+      const Eigen::Vector2d x0 = r * Eigen::Vector2d(std::cos(where), std::sin(where));
+      if ((x0 - span * kin.V_r).norm() >= p.a)
+        continue;  // leaves the patch within the message (the lattice takes it off there)
+      const double angle = 2.0 * M_PI * unit(rng);
+      // (three in four near the bound, where a test too lenient would claim a bristle that is about to slide)
+      const double fill = n % 4 == 0 ? 1.05 * unit(rng) : 0.8 + 0.25 * unit(rng);
+      const Eigen::Vector2d u0 = fill * advance.bound(x0) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+      Eigen::Vector2d fast = u0;
+      const bool claims = advance.adhereThrough(fast, x0, span);
+      lattice::BristleState s;
+      s.u = u0;
+      advance.advance(s, x0, span, false, 1000);
+      ++compared;
+      if (!claims)
+      {
+        EXPECT_EQ(fast, u0) << "case " << n << ": refused, yet changed the deflection";
+        continue;
+      }
+      ++claimed;
+      // independently: u(tau) = u0 + tau w(x0 - V_r tau / 2) (the drive is affine in x: the midpoint rule is exact)
+      // stays within the bound along the path, sampled at 2000 points
+      double worst = -INFINITY;
+      for (int i = 1; i <= 2000; ++i)
+      {
+        const double tau = span * i / 2000.0;
+        const Eigen::Vector2d u = u0 + tau * advance.drive(x0 - 0.5 * tau * kin.V_r);
+        worst = std::max(worst, u.norm() - advance.bound(x0 - tau * kin.V_r));
+      }
+      EXPECT_LT(worst, 0.0) << "case " << n << ": claimed no onset, but the deflection reaches the bound";
+      EXPECT_FALSE(s.sliding) << "case " << n << ": claimed no onset, but the bristle slid";
+      EXPECT_EQ(fast, s.u) << "case " << n << ": a different deflection from advance()";
+    }
+  }
+  std::printf("adhereThrough: %d of %d bristles claimed\n", claimed, compared);
+  EXPECT_GE(claimed, compared / 5);
+}
+
 }  // namespace
 }  // namespace sphere_contact_estimator

@@ -126,7 +126,7 @@ private:
   double c_;                             // the bound at the centre, mu q_z(0) / k [m]
   double inv_a2_;
   Eigen::Vector2d V_r_, V_s_, w_dot_;    // w' = d w / d tau along a path
-  double w_dot_norm_;
+  double w_dot_norm_;                    // |w'|, the same along every path
   double omega_z_, speed2_;
   double tolerance_;
 };
