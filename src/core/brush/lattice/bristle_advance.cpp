@@ -57,8 +57,8 @@ double BristleAdvance::onset(const Piece& s, double span, bool at_rim) const
 {
   // g = |u|^2 - (c f)^2, f^2 = t^m: a polynomial of degree <= 4 in tau
   const Eigen::Vector2d w = drive(s.x), alpha = 0.5 * w_dot_;
-  const double c2 = c_ * c_, t0 = at_rim ? 0.0 : s.t0, eps = 1e-12 * c2;
-  if (staysInside(s.u, w, t0, s.t1, s.t2, span))
+  const double c2 = c_ * c_, t0 = at_rim ? 0.0 : s.t0, eps = kRounding * c2;
+  if (staysInside(s.u, w, { t0, s.t1, s.t2 }, span))
     return INFINITY;
   double g[5] = { s.u.squaredNorm(), 2.0 * s.u.dot(w), w.squaredNorm() + 2.0 * s.u.dot(alpha), 2.0 * w.dot(alpha),
                   alpha.squaredNorm() };
@@ -315,18 +315,18 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
                                          11.0 / 84.0 } };
   static constexpr double kE[7] = { 71.0 / 57600.0,      0.0,          -71.0 / 16695.0, 71.0 / 1920.0,
                                     -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0 };
-  const Along p{ x_start, drive(x_start), 1.0 - x_start.squaredNorm() * inv_a2_, 2.0 * x_start.dot(V_r_) * inv_a2_,
-                 -speed2_ * inv_a2_ };
+  const Quadratic t_start = tAlong(x_start);
+  const Along p{ x_start, drive(x_start), t_start.t0, t_start.t1, t_start.t2 };
   const auto pushing = [](const Point& q, const Eigen::Vector2d& e) { return q.w.dot(e) - q.b_dot; };
   double tau = 0.0;
   double step = span;
   bool to_event = false;  // a re-adhesion was located in a step: the step to it is being taken
   const double turn = p.w.x() * w_dot_.y() - p.w.y() * w_dot_.x();  // w x w', the drive's turn times |w|^2
-  // an exponential step taken (either branch): the carried error shrinks with the bound and by the pull's contraction,
-  // its own is added, and the next step follows from its estimate
-  // (the point at the end of an accepted step is the next one's start: kept, not evaluated again)
+  // the point at the end of an accepted step is the next one's start: kept, not evaluated again
   Point known = at(p, 0.0);
   double known_tau = 0.0;
+  // an exponential step taken (either branch): the carried error shrinks with the bound and by the pull's contraction,
+  // its own is added, and the next step follows from its estimate
   const auto takeExponential = [&](const Exponential& x, double b0, const Point& q1, double d) {
     s.step_error = s.step_error * std::min(1.0, q1.b / std::max(b0, 1e-300)) / (1.0 + x.Lambda) + x.error;
     s.u = q1.b * x.e1;
@@ -559,7 +559,8 @@ int BristleAdvance::advance(BristleState& s, const Eigen::Vector2d& x_start, dou
   double left = duration;
   const double speed = std::sqrt(speed2_);
   const auto piece = [&](const Eigen::Vector2d& at, const Eigen::Vector2d& u) {
-    return Piece{ at, u, 1.0 - at.squaredNorm() * inv_a2_, 2.0 * at.dot(V_r_) * inv_a2_, -speed2_ * inv_a2_ };
+    const Quadratic t = tAlong(at);
+    return Piece{ at, u, t.t0, t.t1, t.t2 };
   };
   bool rim = at_rim;
   for (int event = 0; left > 0.0; ++event)

@@ -36,11 +36,11 @@ struct BristleState
 ///   Prince's 5(4) pair where the pull |w| / b is not stiff over the step (where the drive's turn against its pull
 ///   barely changes over it, the exponential step below first, with an error that bounds the turn term's range); where
 ///   it is stiff, an exponential step in the drive's frame, else the trial deflection (the closed form over a step)
-///   scaled back onto the bound, the implicit form of eq. (4b), against two half steps; each step's error within `tolerance`. The sliding speed w.e - db/dtau is
-///   watched at the stages (a re-adhesion located, then stepped to), and no step passes the path's entry into G
-///   (|w| <= db/dtau), where the bristle has re-adhered at the latest. Without rolling (V_r = 0: parked, spin in
-///   place) drive and bound are constant along the "path" and the direction relaxes towards the drive in closed form,
-///   tan(delta / 2) ~ e^{-|w| tau / b}: exact, one step.
+///   scaled back onto the bound, the implicit form of eq. (4b), against two half steps; each step's error within
+///   `tolerance`. The sliding speed w.e - db/dtau is watched at the stages (a re-adhesion located, then stepped to),
+///   and no step passes the path's entry into G (|w| <= db/dtau), where the bristle has re-adhered at the latest.
+///   Without rolling (V_r = 0: parked, spin in place) drive and bound are constant along the "path" and the direction
+///   relaxes towards the drive in closed form, tan(delta / 2) ~ e^{-|w| tau / b}: exact, one step.
 class BristleAdvance
 {
 public:
@@ -57,8 +57,7 @@ public:
   bool adhereThrough(Eigen::Vector2d& u, const Eigen::Vector2d& x_start, double duration) const
   {
     const Eigen::Vector2d w = drive(x_start);
-    if (!staysInside(u, w, 1.0 - x_start.squaredNorm() * inv_a2_, 2.0 * x_start.dot(V_r_) * inv_a2_,
-                     -speed2_ * inv_a2_, duration))
+    if (!staysInside(u, w, tAlong(x_start), duration))
       return false;
     u += duration * (w + 0.5 * duration * w_dot_);
     return true;
@@ -103,17 +102,27 @@ private:
   // eq. (4b)'s sliding from the piece's start over span: returns when it ended (re-adhered: < span) and the steps
   double coulombSlide(BristleState& s, const Eigen::Vector2d& x_start, double span, int& steps, int max_steps) const;
   double coulombSlideStill(BristleState& s, const Eigen::Vector2d& x, double span) const;
-  // Whether an adhering bristle with deflection u and drive w at the start, t = t0 + t1 tau + t2 tau^2, surely stays
-  // inside its bound over (0, span]: |u(tau)| <= |u| + |w| tau + |w'| tau^2 / 2, and the bound over the span is smallest
-  // at one of its ends (t is a concave quadratic, f grows with t). Where that reach stays below it by more than
-  // onset()'s rounding margin, |u|^2 - (mu q_z / k)^2 < -1e-12 c^2 throughout: no onset. Most adhering bristles lie well
-  // inside their bound: this spares them the onset's quartic.
-  bool staysInside(const Eigen::Vector2d& u, const Eigen::Vector2d& w, double t0, double t1, double t2,
-                   double span) const
+  // t = 1 - r^2 / a^2 along the path from x (r = |x - V_r tau|): t0 + t1 tau + t2 tau^2
+  struct Quadratic
+  {
+    double t0, t1, t2;
+  };
+  Quadratic tAlong(const Eigen::Vector2d& x) const
+  {
+    return { 1.0 - x.squaredNorm() * inv_a2_, 2.0 * x.dot(V_r_) * inv_a2_, -speed2_ * inv_a2_ };
+  }
+  // onset()'s rounding margin on |u|^2 - (mu q_z / k)^2, over c^2
+  static constexpr double kRounding = 1e-12;
+  // Whether an adhering bristle with deflection u and drive w at the start surely stays inside its bound over
+  // (0, span]: |u(tau)| <= |u| + |w| tau + |w'| tau^2 / 2, and the bound over the span is smallest at one of its ends
+  // (t is a concave quadratic, f grows with t). Where that reach stays below it by more than the rounding margin,
+  // |u|^2 - (mu q_z / k)^2 < -kRounding c^2 throughout: no onset. Most adhering bristles lie well inside their bound:
+  // this spares them the onset's quartic.
+  bool staysInside(const Eigen::Vector2d& u, const Eigen::Vector2d& w, const Quadratic& t, double span) const
   {
     const double reach = u.norm() + span * (w.norm() + 0.5 * span * w_dot_norm_);
-    const double b = c_ * std::min(pressure_.shape(t0), pressure_.shape(t0 + span * (t1 + span * t2)));
-    return reach * reach < b * b - 1e-12 * c_ * c_;
+    const double b = c_ * std::min(pressure_.shape(t.t0), pressure_.shape(t.t0 + span * (t.t1 + span * t.t2)));
+    return reach * reach < b * b - kRounding * c_ * c_;
   }
   Eigen::Vector2d adhere(const Eigen::Vector2d& x_start, const Eigen::Vector2d& u_start, double tau) const
   {
