@@ -12,6 +12,10 @@ namespace sphere_contact_estimator::lattice
 namespace
 {
 constexpr int kMaxEvents = 16;  // onsets and re-adhesions per bristle and update (more only at a tangency's rounding)
+// exponentialStep: a step longer than this share of its distance to a rim crossing integrates lambda against the
+// bound's shape (nearRim); up to it Simpson's rule stands, the trapezoid's difference above its error (at half the
+// distance to a pole 1 / (rho - s), 0.014 against 0.0013 of the integral's 0.69)
+constexpr double kRimNear = 0.5;
 
 // Whether p(s) = sum c[i] s^i (degree n <= 4) can be positive on (0, span]: its Bernstein coefficients on [0, span]
 // bound it (convex hull), so all of them <= 0 means it is not. A cheap test before the exact isolation.
@@ -230,19 +234,68 @@ double BristleAdvance::returnMapping(BristleState& s, const Along& p, double tau
   return tn > b_end ? b_end / tn : 1.0;  // how a direction error carried into the step shrinks
 }
 
+void BristleAdvance::nearRim(const Along& p, double tau, double d, const Eigen::Vector2d& w_start, double w0, double wm,
+                             double w1, double& Lambda, double& error) const
+{
+  // t along the step from its start, tc0 + tc1 s + t2 s^2 = t2 (s - s_a) (s - s_b), s_a < 0 < s_b: the path's rim
+  // crossings behind and ahead (t2 < 0 while rolling)
+  const double t2 = p.t2, tc0 = p.t0 + tau * (p.t1 + tau * t2), tc1 = p.t1 + 2.0 * tau * t2;
+  if (!(t2 < 0.0) || !(tc0 > 0.0))
+    return;
+  const double q = -0.5 * (tc1 + std::copysign(std::sqrt(tc1 * tc1 - 4.0 * t2 * tc0), tc1));
+  const double s_a = std::min(q / t2, tc0 / q), s_b = std::max(q / t2, tc0 / q);
+  if (!(d > kRimNear * std::min(-s_a, s_b) && d < s_b))
+    return;  // far from both: Simpson's rule stands
+  // |w| as the quadratic through its three values, w0 + a1 s + a2 s^2; each integral over the step of
+  // (alpha0 + alpha1 s + alpha2 s^2) / f(t(s)) in closed form
+  const double a2 = 2.0 * (w0 - 2.0 * wm + w1) / (d * d), a1 = (w1 - w0) / d - a2 * d;
+  // f = t: the remainder after dividing by t in partial fractions over its roots, logarithms of the distances to them.
+  // f = sqrt(t): s = m + h sin(phi), t = |t2| h^2 cos^2(phi), phi measured from the nearer root, where it is exact.
+  const double h = 0.5 * (s_b - s_a), m = 0.5 * (s_a + s_b);
+  double log_a = 0.0, log_b = 0.0, dphi = 0.0, sin0 = 0.0, cos0 = 0.0, sin1 = 0.0, cos1 = 0.0;
+  if (m_ == 2)
+  {
+    log_a = std::log1p(d / -s_a);
+    log_b = std::log1p(-d / s_b);
+  }
+  else
+  {
+    dphi = -s_a < s_b ? 2.0 * (std::asin(std::sqrt((d - s_a) / (2.0 * h))) - std::asin(std::sqrt(-s_a / (2.0 * h))))
+                      : 2.0 * (std::asin(std::sqrt(s_b / (2.0 * h))) - std::asin(std::sqrt((s_b - d) / (2.0 * h))));
+    sin0 = -m / h, cos0 = std::sqrt(-s_a * s_b) / h, sin1 = (d - m) / h, cos1 = std::sqrt((d - s_a) * (s_b - d)) / h;
+  }
+  const auto integral = [&](double alpha0, double alpha1, double alpha2) {
+    if (m_ == 2)
+    {
+      const double beta0 = alpha0 - alpha2 * tc0 / t2, beta1 = alpha1 - alpha2 * tc1 / t2;
+      const double A = (beta0 + beta1 * s_a) / (t2 * (s_a - s_b)), B = (beta0 + beta1 * s_b) / (t2 * (s_b - s_a));
+      return alpha2 * d / t2 + A * log_a + B * log_b;
+    }
+    const double g0 = alpha0 + m * (alpha1 + alpha2 * m), g1 = h * (alpha1 + 2.0 * alpha2 * m), g2 = alpha2 * h * h;
+    return (g0 * dphi + g1 * (cos0 - cos1) + g2 * 0.5 * (dphi - (sin1 * cos1 - sin0 * cos0))) / std::sqrt(-t2);
+  };
+  Lambda = integral(w0, a1, a2) / c_;
+  // Its error: the quadratic's, |w| - W = |w|'''(xi) / 6 s (s - d / 2) (s - d), where |s (s - d / 2) (s - d)| <=
+  // d^2 / 2 min(s, d - s) and, with |w|^2 = |w_s + w' s|^2, |w|''' = -3 D (w . w') / |w|^5, D = (w_s x w')^2, so that
+  // ||w|'''| <= 3 D |w'| / |w|^4 at the least |w| over the step.
+  const double cross = w_start.x() * w_dot_.y() - w_start.y() * w_dot_.x(), D = cross * cross;
+  const double vertex = -w_start.dot(w_dot_) / std::max(w_dot_norm_ * w_dot_norm_, 1e-300);
+  const double w_least = vertex > 0.0 && vertex < d ? std::abs(cross) / w_dot_norm_ : std::min(w0, w1);
+  const double third = 3.0 * D * w_dot_norm_ / (w_least * w_least * w_least * w_least);
+  error = third / 12.0 * d * d * std::min(integral(0.0, 1.0, 0.0), integral(d, -1.0, 0.0)) / c_;
+}
+
 bool BristleAdvance::exponentialStep(const Along& p, const Point& q0, const Point& q1, double w0, double w1,
-                                     const Eigen::Vector2d& e0, double tau, double d, bool bounded,
+                                     const Eigen::Vector2d& e0, double tau, double d, bool first_try,
                                      Exponential& out) const
 {
   // In the drive's frame, delta = theta - arg w obeys delta' = -lambda sin delta - omega with lambda = |w| / b and
   // omega = (w x w') / |w|^2 the drive's turn; T = tan(delta / 2) obeys T' = -lambda T - (omega / 2) (1 + T^2), so that
   // T(d) = e^{-Lambda} T0 - (1 - e^{-Lambda}) <g>, g = omega (1 + T^2) / (2 lambda) averaged with the positive kernel
-  // lambda e^{-(Lambda(d) - Lambda(s))} / (1 - e^{-Lambda}), Lambda the integral of lambda (Simpson). The step takes
-  // g at the end, T1 = e^{-Lambda} T0 - (1 - e^{-Lambda}) g(T1): a quadratic; on the slow manifold that is the lag,
-  // delta ~ -omega / lambda. Its error, 2 b |dT| (|d theta| <= 2 |dT|): with `bounded`, (1 - e^{-Lambda}) times the
-  // range of g over the step (ratios omega / lambda at its ends and middle, 1 + T^2 between T0's and T1's), at any
-  // pull; else (stiff: the kernel's weight lies at the end) the same with the midpoint's omega / lambda; and Lambda's
-  // by the trapezoid's difference from Simpson's.
+  // lambda e^{-(Lambda(d) - Lambda(s))} / (1 - e^{-Lambda}), Lambda the integral of lambda (Simpson's rule; near a rim
+  // crossing nearRim). The step takes g at the end, T1 = e^{-Lambda} T0 - (1 - e^{-Lambda}) g(T1): a quadratic; on the
+  // slow manifold that is the lag, delta ~ -omega / lambda. Its error is 2 b |dT| (|d theta| <= 2 |dT|), dT bounded
+  // below, plus T0's decay's error from Lambda's.
   const Point qm = at(p, tau + 0.5 * d);
   const double wm = qm.w.norm();
   if (!(w0 > 0.0 && wm > 0.0 && w1 > 0.0 && q1.b > 0.0 && qm.b > 0.0))
@@ -253,8 +306,17 @@ bool BristleAdvance::exponentialStep(const Along& p, const Point& q0, const Poin
   // the start's angle from the drive
   const Eigen::Vector2d h0 = q0.w / w0, h1 = q1.w / w1;
   const double c0 = e0.dot(h0), s0 = h0.x() * e0.y() - h0.y() * e0.x();
-  const double Lambda = std::isfinite(l0) ? d / 6.0 * (l0 + 4.0 * lm + l1) : INFINITY;
-  const double Lambda_trap = std::isfinite(l0) ? d / 4.0 * (l0 + 2.0 * lm + l1) : INFINITY;
+  double Lambda = INFINITY, Lambda_error = 0.0;
+  if (std::isfinite(l0))
+  {
+    Lambda = d / 6.0 * (l0 + 4.0 * lm + l1);
+    Lambda_error = std::abs(Lambda - d / 4.0 * (l0 + 2.0 * lm + l1));  // the trapezoid's difference
+    // Near a rim crossing (t, a concave quadratic, not positive at d / kRimNear before or after the step's start, so a
+    // crossing lies within that), nearRim.
+    const double t_at = p.t0 + tau * (p.t1 + tau * p.t2), rate = p.t1 + 2.0 * tau * p.t2, reach = d / kRimNear;
+    if (m_ > 0 && (t_at + reach * (rate + reach * p.t2) <= 0.0 || t_at - reach * (rate - reach * p.t2) <= 0.0))
+      nearRim(p, tau, d, q0.w, w0, wm, w1, Lambda, Lambda_error);
+  }
   const double E = std::exp(-Lambda);
   const double T0 = c0 > -1.0 ? s0 / (1.0 + c0) : INFINITY;
   const auto solve = [&](double ratio, double& T1) {
@@ -265,30 +327,42 @@ bool BristleAdvance::exponentialStep(const Along& p, const Point& q0, const Poin
     T1 = -2.0 * c / (1.0 + std::sqrt(disc));
     return true;
   };
-  double T1, T1m;
-  if (!(c0 > 0.0 && solve(om_1 / l1, T1) && solve(om_m / lm, T1m) && std::abs(T1) <= 1.0))
+  double T1;
+  if (!(c0 > 0.0 && solve(om_1 / l1, T1) && std::abs(T1) <= 1.0))
     return false;  // no slow manifold within the step
-  double turn = std::abs(T1 - T1m);
-  if (bounded)
+  // Its error: T1 - T(d) = (1 - E) (<g> - g(d, T1)), where with r = omega / (2 lambda) = omega b / (2 |w|) (0 where the
+  // bound vanishes) <g> - g(d, T1) = <(r - r(d)) (1 + T^2)> + r(d) (<T^2> - T1^2). Each term is at most its range over
+  // the step (r's between its three values, T^2's between T0^2 and T1^2, or from 0 where T changes sign): the bound for
+  // a short step, where the kernel is nearly flat. Over a long one the kernel's weight lies at the end, and
+  // - r as the quadratic through its three values, |r(s) - r(d)| <= (|r'(d)| + |r''| d / 2) (d - s), where the kernel's
+  //   mean of d - s is at most its mean of Lambda(d) - Lambda(s), (1 - (1 + Lambda) E) / (1 - E), over lambda's least;
+  // - |T(s)| <= |T0| e^{-Lambda(s)} + G with G >= |g| over the step, and in the kernel's weights
+  //   <e^{-2 Lambda(s)}> = E, <e^{-Lambda(s)}> = Lambda E / (1 - E): <T^2> <= T0^2 E + 2 |T0| G Lambda E / (1 - E) +
+  //   G^2, and |<T^2> - T1^2| is at most the larger of that and T1^2.
+  // (The stiff step's estimate was the midpoint's ratio alone: it missed the second term, a parked or spinning
+  // bristle's error over a 10-ms message, by up to 29x.)
+  const double r0 = 0.5 * (q0.w.x() * w_dot_.y() - q0.w.y() * w_dot_.x()) * q0.b / (w0 * w0 * w0);
+  const double rm = 0.5 * om_m / lm, r1 = 0.5 * om_1 / l1;
+  const double T0s = T0 * T0, T1s = T1 * T1, T2_max = std::max(T0s, T1s);
+  const double r_max = std::max({ std::abs(r0), std::abs(rm), std::abs(r1) });
+  double r_term = std::max({ r0, rm, r1 }) - std::min({ r0, rm, r1 });
+  double T2_term = T2_max - (T0 * T1 > 0.0 ? std::min(T0s, T1s) : 0.0);
+  if (Lambda > 1.0)
   {
-    const double om_0 = (q0.w.x() * w_dot_.y() - q0.w.y() * w_dot_.x()) / (w0 * w0);
-    const double r[3] = { 0.5 * om_0 / l0, 0.5 * om_m / lm, 0.5 * om_1 / l1 };
-    const double f_hi = 1.0 + std::max(T0 * T0, T1 * T1);
-    const double f_lo = 1.0 + (T0 * T1 > 0.0 ? std::min(T0 * T0, T1 * T1) : 0.0);
-    double g_min = INFINITY, g_max = -INFINITY;
-    for (double ri : r)
-      for (double f : { f_lo, f_hi })
-      {
-        g_min = std::min(g_min, ri * f);
-        g_max = std::max(g_max, ri * f);
-      }
-    turn = (1.0 - E) * (g_max - g_min);
+    const double lag = (1.0 - (1.0 + Lambda) * E) / (1.0 - E) / std::min({ l0, lm, l1 });
+    r_term = std::min(r_term, (std::abs(r0 - 4.0 * rm + 3.0 * r1) + 2.0 * std::abs(r0 - 2.0 * rm + r1)) / d * lag);
+    const double G = r_max * (1.0 + T2_max);
+    T2_term = std::min(T2_term, std::max(T1s, T0s * E + 2.0 * std::abs(T0) * G * Lambda * E / (1.0 - E) + G * G));
   }
-  out.error = 2.0 * q1.b * (turn + E * std::abs(T0) * std::abs(Lambda - Lambda_trap));
+  const double turn = (1.0 - E) * ((1.0 + T2_max) * r_term + r_max * T2_term);
+  // (Lambda's error: e^{-(Lambda - dLambda)} - e^{-Lambda} = E (e^{dLambda} - 1) <= E dLambda (1 + dLambda) to 1)
+  const double decay_error = Lambda_error <= 1.0 ? E * Lambda_error * (1.0 + Lambda_error)
+                                                 : std::exp(-std::max(0.0, Lambda - Lambda_error)) - E;
+  out.error = 2.0 * q1.b * (turn + std::abs(T0) * decay_error);
   const double T2 = T1 * T1, n = 1.0 / (1.0 + T2), cd = (1.0 - T2) * n, sd = 2.0 * T1 * n;
   out.e1 = Eigen::Vector2d(cd * h1.x() - sd * h1.y(), sd * h1.x() + cd * h1.y());
-  // pushed outward at the end and the middle (with bounded, at the middle along the nearer of the ends' angles)
-  out.pushed = w1 * cd - q1.b_dot >= 0.0 && wm * std::min(bounded ? c0 : 1.0, cd) - qm.b_dot >= 0.0;
+  // pushed outward at the end and the middle (with first_try, at the middle along the nearer of the ends' angles)
+  out.pushed = w1 * cd - q1.b_dot >= 0.0 && wm * std::min(first_try ? c0 : 1.0, cd) - qm.b_dot >= 0.0;
   out.Lambda = Lambda;
   return true;
 }
@@ -430,7 +504,7 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
     }
     if (stiff)
     {
-      // stiff over this step: the exponential step (exponentialStep), its error estimated by the midpoint's turn
+      // stiff over this step: the exponential step (exponentialStep), its error bounded as where it is tried first
       Exponential x;
       if (exponentialStep(p, q0, q1, w0, w1, e0, tau, d, false, x))
       {
