@@ -234,12 +234,12 @@ double BristleAdvance::returnMapping(BristleState& s, const Along& p, double tau
   return tn > b_end ? b_end / tn : 1.0;  // how a direction error carried into the step shrinks
 }
 
-void BristleAdvance::nearRim(const Along& p, double tau, double d, const Eigen::Vector2d& w_start, double w0, double wm,
-                             double w1, double& Lambda, double& error) const
+void BristleAdvance::nearRim(const Quadratic& t, double d, const Eigen::Vector2d& w_start, double cross, double w0,
+                             double wm, double w1, double& Lambda, double& error) const
 {
   // t along the step from its start, tc0 + tc1 s + t2 s^2 = t2 (s - s_a) (s - s_b), s_a < 0 < s_b: the path's rim
   // crossings behind and ahead (t2 < 0 while rolling)
-  const double t2 = p.t2, tc0 = p.t0 + tau * (p.t1 + tau * t2), tc1 = p.t1 + 2.0 * tau * t2;
+  const double tc0 = t.t0, tc1 = t.t1, t2 = t.t2;
   if (!(t2 < 0.0) || !(tc0 > 0.0))
     return;
   const double q = -0.5 * (tc1 + std::copysign(std::sqrt(tc1 * tc1 - 4.0 * t2 * tc0), tc1));
@@ -278,7 +278,7 @@ void BristleAdvance::nearRim(const Along& p, double tau, double d, const Eigen::
   // Its error: the quadratic's, |w| - W = |w|'''(xi) / 6 s (s - d / 2) (s - d), where |s (s - d / 2) (s - d)| <=
   // d^2 / 2 min(s, d - s) and, with |w|^2 = |w_s + w' s|^2, |w|''' = -3 D (w . w') / |w|^5, D = (w_s x w')^2, so that
   // ||w|'''| <= 3 D |w'| / |w|^4 at the least |w| over the step.
-  const double cross = w_start.x() * w_dot_.y() - w_start.y() * w_dot_.x(), D = cross * cross;
+  const double D = cross * cross;
   const double vertex = -w_start.dot(w_dot_) / std::max(w_dot_norm_ * w_dot_norm_, 1e-300);
   const double w_least = vertex > 0.0 && vertex < d ? std::abs(cross) / w_dot_norm_ : std::min(w0, w1);
   const double third = 3.0 * D * w_dot_norm_ / (w_least * w_least * w_least * w_least);
@@ -306,6 +306,7 @@ bool BristleAdvance::exponentialStep(const Along& p, const Point& q0, const Poin
   // the start's angle from the drive
   const Eigen::Vector2d h0 = q0.w / w0, h1 = q1.w / w1;
   const double c0 = e0.dot(h0), s0 = h0.x() * e0.y() - h0.y() * e0.x();
+  const double cross = q0.w.x() * w_dot_.y() - q0.w.y() * w_dot_.x();  // w x w', the same along the piece
   double Lambda = INFINITY, Lambda_error = 0.0;
   if (std::isfinite(l0))
   {
@@ -313,9 +314,10 @@ bool BristleAdvance::exponentialStep(const Along& p, const Point& q0, const Poin
     Lambda_error = std::abs(Lambda - d / 4.0 * (l0 + 2.0 * lm + l1));  // the trapezoid's difference
     // Near a rim crossing (t, a concave quadratic, not positive at d / kRimNear before or after the step's start, so a
     // crossing lies within that), nearRim.
-    const double t_at = p.t0 + tau * (p.t1 + tau * p.t2), rate = p.t1 + 2.0 * tau * p.t2, reach = d / kRimNear;
-    if (m_ > 0 && (t_at + reach * (rate + reach * p.t2) <= 0.0 || t_at - reach * (rate - reach * p.t2) <= 0.0))
-      nearRim(p, tau, d, q0.w, w0, wm, w1, Lambda, Lambda_error);
+    const Quadratic t{ p.t0 + tau * (p.t1 + tau * p.t2), p.t1 + 2.0 * tau * p.t2, p.t2 };  // from the step's start
+    const double reach = d / kRimNear;
+    if (m_ > 0 && (t.t0 + reach * (t.t1 + reach * t.t2) <= 0.0 || t.t0 - reach * (t.t1 - reach * t.t2) <= 0.0))
+      nearRim(t, d, q0.w, cross, w0, wm, w1, Lambda, Lambda_error);
   }
   const double E = std::exp(-Lambda);
   const double T0 = c0 > -1.0 ? s0 / (1.0 + c0) : INFINITY;
@@ -341,7 +343,7 @@ bool BristleAdvance::exponentialStep(const Along& p, const Point& q0, const Poin
   //   G^2, and |<T^2> - T1^2| is at most the larger of that and T1^2.
   // (The stiff step's estimate was the midpoint's ratio alone: it missed the second term, a parked or spinning
   // bristle's error over a 10-ms message, by up to 29x.)
-  const double r0 = 0.5 * (q0.w.x() * w_dot_.y() - q0.w.y() * w_dot_.x()) * q0.b / (w0 * w0 * w0);
+  const double r0 = 0.5 * cross * q0.b / (w0 * w0 * w0);
   const double rm = 0.5 * om_m / lm, r1 = 0.5 * om_1 / l1;
   const double T0s = T0 * T0, T1s = T1 * T1, T2_max = std::max(T0s, T1s);
   const double r_max = std::max({ std::abs(r0), std::abs(rm), std::abs(r1) });
@@ -359,7 +361,7 @@ bool BristleAdvance::exponentialStep(const Along& p, const Point& q0, const Poin
   const double decay_error = Lambda_error <= 1.0 ? E * Lambda_error * (1.0 + Lambda_error)
                                                  : std::exp(-std::max(0.0, Lambda - Lambda_error)) - E;
   out.error = 2.0 * q1.b * (turn + std::abs(T0) * decay_error);
-  const double T2 = T1 * T1, n = 1.0 / (1.0 + T2), cd = (1.0 - T2) * n, sd = 2.0 * T1 * n;
+  const double n = 1.0 / (1.0 + T1s), cd = (1.0 - T1s) * n, sd = 2.0 * T1 * n;
   out.e1 = Eigen::Vector2d(cd * h1.x() - sd * h1.y(), sd * h1.x() + cd * h1.y());
   // pushed outward at the end and the middle (with first_try, at the middle along the nearer of the ends' angles)
   out.pushed = w1 * cd - q1.b_dot >= 0.0 && wm * std::min(first_try ? c0 : 1.0, cd) - qm.b_dot >= 0.0;

@@ -36,12 +36,12 @@ struct BristleState
 ///   Prince's 5(4) pair where the pull |w| / b is not stiff over the step (where the drive's turn against its pull
 ///   barely changes over it, the exponential step below first); where it is stiff, an exponential step in the drive's
 ///   frame (its error bounded at any pull; near a rim crossing the decay integrated against the bound's shape, where
-///   1 / b has its pole), else the trial deflection (the closed form over a step)
-///   scaled back onto the bound, the implicit form of eq. (4b), against two half steps; each step's error within
-///   `tolerance`. The sliding speed w.e - db/dtau is watched at the stages (a re-adhesion located, then stepped to),
-///   and no step passes the path's entry into G (|w| <= db/dtau), where the bristle has re-adhered at the latest.
-///   Without rolling (V_r = 0: parked, spin in place) drive and bound are constant along the "path" and the direction
-///   relaxes towards the drive in closed form, tan(delta / 2) ~ e^{-|w| tau / b}: exact, one step.
+///   1 / b has its pole), else the trial deflection (the closed form over a step) scaled back onto the bound, the
+///   implicit form of eq. (4b), against two half steps; each step's error within `tolerance`. The sliding speed
+///   w.e - db/dtau is watched at the stages (a re-adhesion located, then stepped to), and no step passes the path's
+///   entry into G (|w| <= db/dtau), where the bristle has re-adhered at the latest. Without rolling (V_r = 0: parked,
+///   spin in place) drive and bound are constant along the "path" and the direction relaxes towards the drive in
+///   closed form, tan(delta / 2) ~ e^{-|w| tau / b}: exact, one step.
 class BristleAdvance
 {
 public:
@@ -76,6 +76,7 @@ public:
 private:
   struct Piece;  // a stretch of the path from its start: position, deflection, t's coefficients
   struct Along;  // the same for a sliding piece: position and drive at its start
+  struct Quadratic;  // t along a path (tAlong)
   struct Point   // what eq. (4b) needs at a time along a sliding piece
   {
     Eigen::Vector2d w;
@@ -92,12 +93,13 @@ private:
     double error, Lambda;
     bool pushed;         // still pushed outward at the middle and the end
   };
-  // Lambda, the integral of lambda = |w| / b over [tau, tau + d], and its error, where the step reaches towards a rim
-  // crossing (1 / b has its pole, or branch point, there, which Simpson's rule does not see: a stiff 10-ms step ending
-  // by the rim took Lambda as 12.9 against 4.0): |w| as its quadratic through its values at the ends and the middle
-  // (w0, wm, w1; w_start the drive at its start), integrated against the bound's shape in closed form, its error from
-  // |w|'s third derivative; elsewhere leaves Simpson's rule untouched.
-  void nearRim(const Along& piece, double tau, double d, const Eigen::Vector2d& w_start, double w0, double wm,
+  // Lambda, the integral of lambda = |w| / b over a step of length d, and its error, where the step reaches towards a
+  // rim crossing (1 / b has its pole, or branch point, there, which Simpson's rule does not see: a stiff 10-ms step
+  // ending by the rim took Lambda as 12.9 against 4.0): |w| as its quadratic through its values at the ends and the
+  // middle (w0, wm, w1; w_start the drive at its start, cross = w_start x w'), integrated against the bound's shape in
+  // closed form, its error from |w|'s third derivative; elsewhere leaves Simpson's rule untouched. t: t from the step's
+  // start.
+  void nearRim(const Quadratic& t, double d, const Eigen::Vector2d& w_start, double cross, double w0, double wm,
                double w1, double& Lambda, double& error) const;
   bool exponentialStep(const Along& piece, const Point& q0, const Point& q1, double w0, double w1,
                        const Eigen::Vector2d& e0, double tau, double d, bool first_try, Exponential& out) const;
