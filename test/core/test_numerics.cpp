@@ -1,5 +1,5 @@
-// The numerical building blocks of the steady solver: real-root isolation of polynomials on an interval, and
-// the Gauss-Legendre and Gauss-Kronrod rules.
+// The numerical building blocks of the solvers: real-root isolation of polynomials on an interval, the Gauss-Legendre
+// and Gauss-Kronrod rules, and the Magnus step of a traceless 2x2 linear system (the lattice's sliding direction).
 
 // STL
 #include <algorithm>
@@ -9,10 +9,15 @@
 #include <stdexcept>
 #include <vector>
 
+// Eigen
+#include <Eigen/Dense>
+#include <unsupported/Eigen/MatrixFunctions>
+
 // GTest
 #include <gtest/gtest.h>
 
 // Package
+#include "sphere_contact_estimator/core/numerics/magnus_sl2.h"
 #include "sphere_contact_estimator/core/numerics/polynomial_roots.h"
 #include "sphere_contact_estimator/core/numerics/quadrature_rules.h"
 
@@ -423,4 +428,120 @@ TEST(QuadratureRules, JacobiKronrodIsExactForItsWeight)
 }
 
 }  // namespace
+namespace
+{
+Eigen::Matrix2d matrixOf(const Sl2& X)
+{
+  Eigen::Matrix2d m;
+  m << X.x, X.y + X.z, X.y - X.z, -X.x;
+  return m;
+}
+
+// A smooth sliding bristle's generator along a step: M(s) = (-P H + Q S) / (2 b) with P, Q affine and b a bound that
+// varies (drive over bound as the lattice's).
+struct Generator
+{
+  double p0, p1, q0, q1, b0, b1, b2;
+  Sl2 at(double s) const
+  {
+    const double b = b0 + b1 * s + b2 * std::sin(3.0 * s);
+    return { -(p0 + p1 * s) / (2.0 * b), (q0 + q1 * s) / (2.0 * b), 0.0 };
+  }
+};
+
+// y(d) from y(0) = (0, 1) by classical Runge-Kutta at n steps: the reference, independent of the Magnus formulas
+Eigen::Vector2d rungeKutta(const Generator& g, double d, int n)
+{
+  Eigen::Vector2d y(0.0, 1.0);
+  const double h = d / n;
+  const auto f = [&](double s, const Eigen::Vector2d& v) { return Eigen::Vector2d(matrixOf(g.at(s)) * v); };
+  for (int i = 0; i < n; ++i)
+  {
+    const double s = i * h;
+    const Eigen::Vector2d k1 = f(s, y), k2 = f(s + 0.5 * h, y + 0.5 * h * k1), k3 = f(s + 0.5 * h, y + 0.5 * h * k2),
+                          k4 = f(s + h, y + h * k3);
+    y += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+  }
+  return y;
+}
+
+double angleOf(const Eigen::Vector2d& y) { return std::atan2(y.x(), y.y()); }
+}  // namespace
+
+TEST(MagnusSl2, ExpColumnIsTheMatrixExponentialsAndItsAngleGradientTheDerivative)
+{
+  // Seeded random exponents across the series' three degrees and both closed forms (delta from -25 to 25): the
+  // column against Eigen's matrix exponential, the angle's gradient against central differences.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  double worst_column = 0.0, worst_gradient = 0.0;
+  for (int n = 0; n < 2000; ++n)
+  {
+    const double scale = std::pow(10.0, -3.0 + 3.7 * (0.5 + 0.5 * unit(rng)));
+    const Sl2 X{ scale * unit(rng), scale * unit(rng), scale * unit(rng) };
+    double y1, y2, grad[3];
+    expColumn2(X, y1, y2, grad);
+    const Eigen::Vector2d reference = matrixOf(X).exp().col(1);
+    worst_column = std::max(worst_column, (Eigen::Vector2d(y1, y2) - reference).norm() / reference.norm());
+    for (int k = 0; k < 3; ++k)
+    {
+      const double eps = 1e-6 * std::max(1.0, scale);
+      Sl2 plus = X, minus = X;
+      (k == 0 ? plus.x : k == 1 ? plus.y : plus.z) += eps;
+      (k == 0 ? minus.x : k == 1 ? minus.y : minus.z) -= eps;
+      double a1, a2, b1, b2, unused[3];
+      expColumn2(plus, a1, a2, unused);
+      expColumn2(minus, b1, b2, unused);
+      double difference = std::atan2(a1, a2) - std::atan2(b1, b2);
+      difference -= 2.0 * M_PI * std::round(difference / (2.0 * M_PI));
+      worst_gradient = std::max(worst_gradient, std::abs(difference / (2.0 * eps) - grad[k]) /
+                                                    std::max(1.0, std::abs(grad[k])));
+    }
+  }
+  std::printf("exp column: largest relative error %.3g; angle gradient: %.3g\n", worst_column, worst_gradient);
+  EXPECT_LT(worst_column, 1e-13);
+  EXPECT_LT(worst_gradient, 1e-6);
+}
+
+TEST(MagnusSl2, SixthOrderStepAndItsFourthOrderEstimate)
+{
+  // Seeded random generators: halving the step divides the sixth-order step's local error by 2^7 and the
+  // fourth-order exponent's by 2^5 (their sums over the set, each at least 3/4 of that: one generator's error can
+  // pass through zero between two steps), and the fourth's error, which the estimate stands on, exceeds the sixth's.
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int compared = 0, fourth_larger = 0;
+  double sum6[2] = { 0.0, 0.0 }, sum4[2] = { 0.0, 0.0 };
+  for (int n = 0; n < 200; ++n)
+  {
+    const Generator g{ 2.0 * unit(rng), 2.0 * unit(rng), 2.0 * unit(rng), 2.0 * unit(rng),
+                       1.0 + 0.5 * unit(rng), 0.5 * unit(rng), 0.2 * unit(rng) };
+    for (int half = 0; half < 2; ++half)
+    {
+      const double d = half ? 0.1 : 0.2;
+      Sl2 A[3];
+      for (int i = 0; i < 3; ++i)
+        A[i] = d * g.at(kMagnusNodes[i] * d);
+      const Sl2 simpson = (d / 6.0) * (g.at(0.0) + 4.0 * g.at(0.5 * d) + g.at(d));
+      Sl2 fourth;
+      const Sl2 omega = magnus6(A, gaussIntegral(A), simpson, fourth);
+      double y1, y2, z1, z2, grad[3];
+      expColumn2(omega, y1, y2, grad);
+      expColumn2(fourth, z1, z2, grad);
+      const double reference = angleOf(rungeKutta(g, d, 4000));
+      const double error6 = std::abs(std::atan2(y1, y2) - reference), error4 = std::abs(std::atan2(z1, z2) - reference);
+      sum6[half] += error6;
+      sum4[half] += error4;
+      ++compared;
+      fourth_larger += error4 > error6;
+    }
+  }
+  const double ratio6 = sum6[0] / sum6[1], ratio4 = sum4[0] / sum4[1];
+  std::printf("%d steps: halving the step divides the errors by %.1f (sixth) and %.1f (fourth); the fourth's larger at "
+              "%d\n", compared, ratio6, ratio4, fourth_larger);
+  EXPECT_GT(ratio6, 0.75 * 128.0);
+  EXPECT_GT(ratio4, 0.75 * 32.0);
+  EXPECT_GE(fourth_larger, compared * 95 / 100);
+}
+
 }  // namespace sphere_contact_estimator::numerics

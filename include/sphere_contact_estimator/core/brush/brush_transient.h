@@ -40,8 +40,8 @@ enum class TransientStepping
 /// h = 2a / resolution stay on one, moved rigidly: advection is exact, with no numerical diffusion and
 /// no stability limit. Without tilt each bristle is advanced over the whole update along its straight path
 /// (lattice/bristle_advance.h: adhesion in closed form, the onset of sliding and the rigid law's re-adhesion as roots
-/// of polynomials, eq. 4b's sliding direction by an explicit 5(4) pair or, where the pull is stiff, an exponential
-/// step, each to 0.05 / resolution^2 of the bound at the centre), entering with u = 0 where its path crosses the
+/// of polynomials, eq. 4b's sliding direction by a sixth-order Magnus step or, where the pull is stiff, an
+/// exponential step, each to 0.2 / resolution^2 of the bound at the centre), entering with u = 0 where its path crosses the
 /// leading edge (eq. 8) and dropped when it leaves: the cost grows with the bristles (resolution^2), not with how far
 /// the patch rolls. With tilt (arcs about the tilting centre, the turn coupling) the update is taken in substeps that
 /// keep each bristle's path within half a lattice spacing and every rotation below 0.1 rad, at most kMaxSubsteps

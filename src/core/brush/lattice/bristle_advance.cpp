@@ -5,7 +5,9 @@
 #include <cmath>
 
 // Package
+#include "sphere_contact_estimator/core/numerics/magnus_sl2.h"
 #include "sphere_contact_estimator/core/numerics/polynomial_roots.h"
+#include "rim_integral.h"
 
 namespace sphere_contact_estimator::lattice
 {
@@ -237,43 +239,12 @@ double BristleAdvance::returnMapping(BristleState& s, const Along& p, double tau
 void BristleAdvance::nearRim(const Quadratic& t, double d, const Eigen::Vector2d& w_start, double cross, double w0,
                              double wm, double w1, double& Lambda, double& error) const
 {
-  // t along the step from its start, tc0 + tc1 s + t2 s^2 = t2 (s - s_a) (s - s_b), s_a < 0 < s_b: the path's rim
-  // crossings behind and ahead (t2 < 0 while rolling)
-  const double tc0 = t.t0, tc1 = t.t1, t2 = t.t2;
-  if (!(t2 < 0.0) || !(tc0 > 0.0))
-    return;
-  const double q = -0.5 * (tc1 + std::copysign(std::sqrt(tc1 * tc1 - 4.0 * t2 * tc0), tc1));
-  const double s_a = std::min(q / t2, tc0 / q), s_b = std::max(q / t2, tc0 / q);
-  if (!(d > kRimNear * std::min(-s_a, s_b) && d < s_b))
+  double s_a, s_b;
+  if (!RimIntegral::crossings(t.t0, t.t1, t.t2, s_a, s_b) || !(d > kRimNear * std::min(-s_a, s_b) && d < s_b))
     return;  // far from both: Simpson's rule stands
-  // |w| as the quadratic through its three values, w0 + a1 s + a2 s^2; each integral over the step of
-  // (alpha0 + alpha1 s + alpha2 s^2) / f(t(s)) in closed form
+  // |w| as the quadratic through its three values, w0 + a1 s + a2 s^2, against 1 / f in closed form
   const double a2 = 2.0 * (w0 - 2.0 * wm + w1) / (d * d), a1 = (w1 - w0) / d - a2 * d;
-  // f = t: the remainder after dividing by t in partial fractions over its roots, logarithms of the distances to them.
-  // f = sqrt(t): s = m + h sin(phi), t = |t2| h^2 cos^2(phi), phi measured from the nearer root, where it is exact.
-  const double h = 0.5 * (s_b - s_a), m = 0.5 * (s_a + s_b);
-  double log_a = 0.0, log_b = 0.0, dphi = 0.0, sin0 = 0.0, cos0 = 0.0, sin1 = 0.0, cos1 = 0.0;
-  if (m_ == 2)
-  {
-    log_a = std::log1p(d / -s_a);
-    log_b = std::log1p(-d / s_b);
-  }
-  else
-  {
-    dphi = -s_a < s_b ? 2.0 * (std::asin(std::sqrt((d - s_a) / (2.0 * h))) - std::asin(std::sqrt(-s_a / (2.0 * h))))
-                      : 2.0 * (std::asin(std::sqrt(s_b / (2.0 * h))) - std::asin(std::sqrt((s_b - d) / (2.0 * h))));
-    sin0 = -m / h, cos0 = std::sqrt(-s_a * s_b) / h, sin1 = (d - m) / h, cos1 = std::sqrt((d - s_a) * (s_b - d)) / h;
-  }
-  const auto integral = [&](double alpha0, double alpha1, double alpha2) {
-    if (m_ == 2)
-    {
-      const double beta0 = alpha0 - alpha2 * tc0 / t2, beta1 = alpha1 - alpha2 * tc1 / t2;
-      const double A = (beta0 + beta1 * s_a) / (t2 * (s_a - s_b)), B = (beta0 + beta1 * s_b) / (t2 * (s_b - s_a));
-      return alpha2 * d / t2 + A * log_a + B * log_b;
-    }
-    const double g0 = alpha0 + m * (alpha1 + alpha2 * m), g1 = h * (alpha1 + 2.0 * alpha2 * m), g2 = alpha2 * h * h;
-    return (g0 * dphi + g1 * (cos0 - cos1) + g2 * 0.5 * (dphi - (sin1 * cos1 - sin0 * cos0))) / std::sqrt(-t2);
-  };
+  const RimIntegral integral(m_, t.t0, t.t1, t.t2, s_a, s_b, d);
   Lambda = integral(w0, a1, a2) / c_;
   // Its error: the quadratic's, |w| - W = |w|'''(xi) / 6 s (s - d / 2) (s - d), where |s (s - d / 2) (s - d)| <=
   // d^2 / 2 min(s, d - s) and, with |w|^2 = |w_s + w' s|^2, |w|''' = -3 D (w . w') / |w|^5, D = (w_s x w')^2, so that
@@ -374,26 +345,20 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
 {
   // The direction u = b e obeys b e' = (I - e e^T) w (eq. 4b with |u| = b). In the frame of the direction e0 at a
   // step's start, t = tan((theta - theta0) / 2) obeys the Riccati equation t' = A + B t - A t^2 with B = -w.e0 / b and
-  // A = (e0 x w) / (2 b): rational, small over a step. Where the pull |w| / b is not stiff over the step, Dormand and
-  // Prince's explicit 5(4) pair with its embedded estimate; where it is, the return mapping (stable at any pull), or
+  // A = (e0 x w) / (2 b): t = y1 / y2 with y' = M y linear, M = (-w.e0 H + (e0 x w) S) / (2 b) (numerics::Sl2), whose
+  // solution is analytic wherever w / b is (t's own poles, where the direction turns by a half turn, are not y's).
+  // Where the pull |w| / b is not stiff over the step, the sixth-order Magnus step on y (numerics::magnus6) with its
+  // embedded fourth-order estimate; where it is, the exponential step or the return mapping (stable at any pull), or
   // where the bound is below half the tolerance, no steps at all (|u - u_true| <= 2 b whatever the direction).
-  // The sliding speed w.e - db/dtau (eq. 4b's multiplier) is watched at the stages; where it turns negative the bristle
-  // re-adheres, located on the step's cubic Hermite interpolant.
-  static constexpr double kC[7] = { 0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0 };
-  static constexpr double kA[7][6] = { {},
-                                       { 0.2 },
-                                       { 3.0 / 40.0, 9.0 / 40.0 },
-                                       { 44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0 },
-                                       { 19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0 },
-                                       { 9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0,
-                                         -5103.0 / 18656.0 },
-                                       { 35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0,
-                                         11.0 / 84.0 } };
-  static constexpr double kE[7] = { 71.0 / 57600.0,      0.0,          -71.0 / 16695.0, 71.0 / 1920.0,
-                                    -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0 };
+  // The sliding speed w.e - db/dtau (eq. 4b's multiplier) is watched at the nodes and the end; where it turns negative
+  // the bristle re-adheres, located on the step's cubic Hermite interpolant.
   const Quadratic t_start = tAlong(x_start);
   const Along p{ x_start, drive(x_start), t_start.t0, t_start.t1, t_start.t2 };
   const auto pushing = [](const Point& q, const Eigen::Vector2d& e) { return q.w.dot(e) - q.b_dot; };
+  // the path's rim crossings behind and ahead of its start (where 1 / b has its pole or branch point), found at the
+  // first Magnus step
+  double cross_a = 0.0, cross_b = 0.0;
+  int crosses = m_ > 0 ? -1 : 0;  // -1: not yet looked for
   double tau = 0.0;
   double step = span;
   bool to_event = false;  // a re-adhesion was located in a step: the step to it is being taken
@@ -457,16 +422,13 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
     const double pull = std::max(w0, w1) / std::max(b_min, 1e-300);
     ++steps;
     bool stiff = pull * d > 3.0;
-    double k[7], t[7], P[7], Q[7];  // P = w . e0, Q = e0 x w at the stages
-    Point q[7];
-    bool turned = false;
     const double un = s.u.norm();
     // (on the rim the bound, and u, vanish: the drive's direction)
     const Eigen::Vector2d e0 = un > 0.0 ? Eigen::Vector2d(s.u / un)
                                         : (w0 > 0.0 ? Eigen::Vector2d(q0.w / w0) : Eigen::Vector2d(1.0, 0.0));
     // Not stiff, but where the drive's turn against its pull, omega / lambda, changes little over the step (spin in
     // place, a slow pivot: the slow manifold's lag barely moves), the exponential step with its bounded error first:
-    // a few dozen operations against the pair's seven stages. (Its turn term is at most (1 - e^{-Lambda}) times the
+    // a few dozen operations against the Magnus step's. (Its turn term is at most (1 - e^{-Lambda}) times the
     // range of g <= 2 |ratio| over the step: where the ends' ratios alone rule it out, it is not tried.)
     if (!stiff && q0.b > 0.0 && q1.b > 0.0 && w0 > 0.0 && w1 > 0.0)
     {
@@ -481,28 +443,73 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
         continue;
       }
     }
+    // the generator of the direction's linear form at a point (its Riccati equation's coefficients, below), times d
+    const auto generator = [&](const Point& q, double& P, double& Q) {
+      const double scale = q.b > 0.0 ? 0.5 * d / q.b : 0.0;
+      P = q.w.dot(e0);
+      Q = e0.x() * q.w.y() - e0.y() * q.w.x();
+      return numerics::Sl2{ -P * scale, Q * scale, 0.0 };
+    };
+    double P[5], Q[5], y1 = 0.0, y2 = 1.0, error = 0.0;
+    Point q[5];  // the start, the Gauss nodes, the end
+    bool turned = false;
     if (!stiff)
     {
-      // stage i at t = d times the tableau's row (spelled out: its zeros skipped, its constants folded)
-      const auto stage = [&](int i, double row) {
-        const double ti = row * d;
-        t[i] = ti;
-        q[i] = i == 0 ? q0 : (i >= 5 ? q1 : at(p, tau + kC[i] * d));
-        const double inv_b = q[i].b > 0.0 ? 1.0 / q[i].b : 0.0;
-        P[i] = q[i].w.dot(e0);
-        Q[i] = e0.x() * q[i].w.y() - e0.y() * q[i].w.x();
-        const double B = -P[i] * inv_b, A = 0.5 * Q[i] * inv_b;
-        k[i] = A + ti * (B - A * ti);
-        turned = turned || !(std::abs(ti) <= 1.0);  // by more than a right angle within the step: too long a step
-      };
-      stage(0, 0.0);
-      stage(1, kA[1][0] * k[0]);
-      stage(2, kA[2][0] * k[0] + kA[2][1] * k[1]);
-      stage(3, kA[3][0] * k[0] + kA[3][1] * k[1] + kA[3][2] * k[2]);
-      stage(4, kA[4][0] * k[0] + kA[4][1] * k[1] + kA[4][2] * k[2] + kA[4][3] * k[3]);
-      stage(5, kA[5][0] * k[0] + kA[5][1] * k[1] + kA[5][2] * k[2] + kA[5][3] * k[3] + kA[5][4] * k[4]);
-      stage(6, kA[6][0] * k[0] + kA[6][2] * k[2] + kA[6][3] * k[3] + kA[6][4] * k[4] + kA[6][5] * k[5]);
-      stiff = turned && !(d > 1e-9 * span);  // a step the explicit pair cannot take any shorter: the return mapping's
+      q[0] = q0;
+      q[4] = q1;
+      for (int i = 0; i < 3; ++i)
+        q[i + 1] = at(p, tau + numerics::kMagnusNodes[i] * d);
+      numerics::Sl2 A[5];
+      for (int i = 0; i < 5; ++i)
+        A[i] = generator(q[i], P[i], Q[i]);
+      // Near a rim crossing (within a step's length of either end) 1 / b has its pole or branch point, which the nodes
+      // do not see (neither in M's integral nor in the commutators): there the step is taken in the stretched time u
+      // (du = ds / f, RimIntegral), in which M f = (-P H + Q S) / (2 c) is affine in s(u) and smooth. Further away, in
+      // s, the estimate compares with Gauss's rule moved towards Simpson's by kappa = (d / rho)^2 / 2 of their
+      // difference, rho the distance to the nearer crossing beyond the step's ends: Gauss's error over Simpson's there
+      // is f^(6) d^7 / 2016000 against f^(4) d^5 / 2880, with |f^(6) / f^(4)| <= 30 / rho^2 for a simple pole about
+      // (d / rho)^2 / 23 (twelvefold room). (Without a pole, the uniform law, Simpson's rule is exact: w is affine.)
+      const numerics::Sl2* nodes = A + 1;
+      numerics::Sl2 stretched[3];
+      numerics::Sl2 omega1 = numerics::gaussIntegral(A + 1), omega1_low = omega1;
+      if (crosses < 0)
+        crosses = RimIntegral::crossings(p.t0, p.t1, p.t2, cross_a, cross_b) ? 1 : 0;
+      if (crosses > 0)
+      {
+        const Quadratic tq{ p.t0 + tau * (p.t1 + tau * p.t2), p.t1 + 2.0 * tau * p.t2, p.t2 };  // from the step's start
+        const double s_a = cross_a - tau, s_b = cross_b - tau;  // the crossings from the step's start
+        const double rho = std::min(-s_a, s_b - d);
+        if (rho > d || !(d < s_b))
+        {
+          const numerics::Sl2 simpson = (1.0 / 6.0) * (A[0] + 4.0 * A[2] + A[4]);
+          omega1_low = omega1 + (rho > d ? 0.5 * (d / rho) * (d / rho) : 1.0) * (simpson - omega1);
+        }
+        else
+        {
+          const RimIntegral integral(m_, tq.t0, tq.t1, tq.t2, s_a, s_b, d);
+          const double P_dot = w_dot_.dot(e0), Q_dot = e0.x() * w_dot_.y() - e0.y() * w_dot_.x();
+          const double scale = 0.5 * integral.stretchedLength() / c_;
+          double at_u[3];
+          integral.stretchedNodes(numerics::kMagnusNodes[0], at_u);
+          for (int i = 0; i < 3; ++i)
+            stretched[i] = { -scale * (P[0] + P_dot * at_u[i]), scale * (Q[0] + Q_dot * at_u[i]), 0.0 };
+          nodes = stretched;
+          omega1 = numerics::gaussIntegral(stretched);
+          omega1_low = (scale / 6.0) * numerics::Sl2{ -(P[0] + 4.0 * (P[0] + P_dot * at_u[1]) + P[4]),
+                                                      Q[0] + 4.0 * (Q[0] + Q_dot * at_u[1]) + Q[4], 0.0 };
+        }
+      }
+      numerics::Sl2 fourth;
+      const numerics::Sl2 omega = numerics::magnus6(nodes, omega1, omega1_low, fourth);
+      // the step's angle error: the exponents' difference through the angle's gradient, each coordinate's part on its
+      // own (their sum can cancel where the true error's does not), the direction's angle twice y's
+      double grad[3];
+      numerics::expColumn2(omega, y1, y2, grad);
+      error = 2.0 * q1.b *
+              (std::abs(grad[0] * (fourth.x - omega.x)) + std::abs(grad[1] * (fourth.y - omega.y)) +
+               std::abs(grad[2] * (fourth.z - omega.z)));
+      turned = !(std::abs(y1) <= y2);  // by more than a right angle within the step: too long a step
+      stiff = turned && !(d > 1e-9 * span);  // a step the Magnus step cannot take any shorter: the return mapping's
     }
     if (stiff)
     {
@@ -523,7 +530,6 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
       }
       // else (no slow manifold, a re-adhesion in the step, or a drive through zero): the return mapping's step
       // doubling, its own step control
-      double error;
       bool slides;
       const Eigen::Vector2d u0 = s.u;
       const double shrink = returnMapping(s, p, tau, d, error, slides);
@@ -540,40 +546,45 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
       step = error > 0.0 ? d * std::min(4.0, 0.9 * std::cbrt(tolerance_ / error)) : 4.0 * d;
       continue;
     }
-    double err_t = 0.0;
-    for (int j = 0; j < 7; ++j)
-      err_t += kE[j] * k[j];
-    const double error = 2.0 * q1.b * std::abs(d * err_t);  // |d theta| <= 2 |d t|
     if ((turned || error > tolerance_) && d > 1e-9 * span)
     {
       step = d * (turned ? 0.25 : std::max(0.2, 0.9 * std::sqrt(std::sqrt(tolerance_ / error))));
       continue;
     }
-    // the direction at stage i: e0 turned by 2 atan(t_i)
+    // the direction at t = tan((theta - theta0) / 2): e0 turned by 2 atan(t)
     const auto direction = [&](double ti) {
       const double n = 1.0 / (1.0 + ti * ti);
       const double c = (1.0 - ti * ti) * n, sn = 2.0 * ti * n;
       return Eigen::Vector2d(c * e0.x() - sn * e0.y(), sn * e0.x() + c * e0.y());
     };
-    // re-adhesion: the first stage (in time) where the bristle is no longer pushed outward; with e at 2 atan(t) from e0,
-    // (1 + t^2) (w . e - db/dtau) = P (1 - t^2) + 2 Q t - (1 + t^2) db/dtau
+    // t over the step on its cubic Hermite interpolant (t and t' = A + B t - A t^2 at the ends; t = 0 at the start)
+    const double t1 = y1 / y2;
+    const auto rate = [&](int i, double ti) {
+      const double inv_b = q[i].b > 0.0 ? 1.0 / q[i].b : 0.0;
+      const double B = -P[i] * inv_b, A = 0.5 * Q[i] * inv_b;
+      return A + ti * (B - A * ti);
+    };
+    const double f0 = rate(0, 0.0) * d, f1 = rate(4, t1) * d;
+    const auto cubic = [&](double x) {
+      const double x2 = x * x, x3 = x2 * x;
+      return (3.0 * x2 - 2.0 * x3) * t1 + (x - 2.0 * x2 + x3) * f0 + (x3 - x2) * f1;
+    };
+    // re-adhesion: the first of the nodes and the end (in time) where the bristle is no longer pushed outward; with e at
+    // 2 atan(t) from e0, (1 + t^2) (w . e - db/dtau) = P (1 - t^2) + 2 Q t - (1 + t^2) db/dtau
+    static constexpr double kAt[5] = { 0.0, numerics::kMagnusNodes[0], numerics::kMagnusNodes[1],
+                                       numerics::kMagnusNodes[2], 1.0 };
     int first = -1;
-    for (int i = 1; i < 7 && first < 0; ++i)
+    for (int i = 1; i < 5 && first < 0; ++i)
     {
-      const double t2 = t[i] * t[i];
-      if (i != 5 && P[i] * (1.0 - t2) + 2.0 * Q[i] * t[i] - (1.0 + t2) * q[i].b_dot < 0.0)  // stages 6, 7: the end
+      const double ti = i == 4 ? t1 : cubic(kAt[i]), t2 = ti * ti;
+      if (P[i] * (1.0 - t2) + 2.0 * Q[i] * ti - (1.0 + t2) * q[i].b_dot < 0.0)
         first = i;
     }
     if (first > 0)
     {
-      // between the previous stage and that one, on the cubic Hermite interpolant of t over the step, by regula falsi
-      const double t1 = t[6], f0 = k[0] * d, f1 = k[6] * d;
-      const auto cubic = [&](double x) {
-        const double x2 = x * x, x3 = x2 * x;
-        return (3.0 * x2 - 2.0 * x3) * t1 + (x - 2.0 * x2 + x3) * f0 + (x3 - x2) * f1;
-      };
+      // between the previous point and that one, on the interpolant, by regula falsi
       const auto speed = [&](double x) { return pushing(at(p, tau + x * d), direction(cubic(x))); };
-      double lo = kC[first == 6 ? 4 : first - 1], hi = kC[first];
+      double lo = kAt[first - 1], hi = kAt[first];
       double s_lo = speed(lo), s_hi = speed(hi);
       if (s_lo < 0.0)
         lo = 0.0, s_lo = speed(0.0);
@@ -590,8 +601,8 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
       const double x = hi;
       if (!to_event && x < 0.999)
       {
-        // the interpolant only locates the event: the pair itself steps to it, so that the bristle's last sliding
-        // state carries the pair's error estimate (the cubic's value, third order, carries none)
+        // the interpolant only locates the event: the Magnus step itself steps to it, so that the bristle's last
+        // sliding state carries its error estimate (the cubic's value, third order, carries none)
         to_event = true;
         step = x * d;
         continue;
@@ -608,13 +619,13 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
       return B - 2.0 * A * ti;
     };
     // (1 / (1 + x) >= e^-x: never less than the decay)
-    const double growth = 1.0 / (1.0 + std::max(0.0, -d * std::max(slope(q0, 0.0), slope(q1, t[6]))));
+    const double growth = 1.0 / (1.0 + std::max(0.0, -d * std::max(slope(q0, 0.0), slope(q1, t1))));
     s.step_error = s.step_error * (q0.b > 0.0 ? std::min(1.0, q1.b / q0.b) : 1.0) * growth + error;
-    s.u = q1.b * direction(t[6]);
+    s.u = q1.b * direction(t1);
     tau += d;
     known = q1;
     known_tau = tau;
-    // (the controller's exponent 1/4 rather than the pair's 1/5: no pow in the loop)
+    // (the controller's exponent 1/4 rather than the estimate's 1/5: no pow in the loop)
     step = error > 0.0 ? d * std::min(5.0, 0.9 * std::sqrt(std::sqrt(tolerance_ / error))) : 5.0 * d;
   }
   return end < span ? end : INFINITY;  // at G's edge it is pushed no more

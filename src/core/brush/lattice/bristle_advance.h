@@ -32,13 +32,14 @@ struct BristleState
 /// - rigid law (Sect. 6): u = (mu q_z / k) w / |w|, no history; it re-adheres where the path enters G, where the bound
 ///   grows along the motion faster than |w| (d(mu q_z / k)/dtau >= |w|, a polynomial condition of degree 2 or 4):
 ///   exact.
-/// - eq. (4b): on the bound u = b e, the direction's Riccati equation in the frame of each step's start by Dormand and
-///   Prince's 5(4) pair where the pull |w| / b is not stiff over the step (where the drive's turn against its pull
+/// - eq. (4b): on the bound u = b e, the direction's Riccati equation in the frame of each step's start, as the ratio of
+///   a traceless linear system's solution, by the sixth-order Magnus step where the pull |w| / b is not stiff over the
+///   step (near a rim crossing in the stretched time du = ds / f, RimIntegral; where the drive's turn against its pull
 ///   barely changes over it, the exponential step below first); where it is stiff, an exponential step in the drive's
 ///   frame (its error bounded at any pull; near a rim crossing the decay integrated against the bound's shape, where
 ///   1 / b has its pole), else the trial deflection (the closed form over a step) scaled back onto the bound, the
 ///   implicit form of eq. (4b), against two half steps; each step's error within `tolerance`. The sliding speed
-///   w.e - db/dtau is watched at the stages (a re-adhesion located, then stepped to), and no step passes the path's
+///   w.e - db/dtau is watched at the nodes (a re-adhesion located, then stepped to), and no step passes the path's
 ///   entry into G (|w| <= db/dtau), where the bristle has re-adhered at the latest. Without rolling (V_r = 0: parked,
 ///   spin in place) drive and bound are constant along the "path" and the direction relaxes towards the drive in
 ///   closed form, tan(delta / 2) ~ e^{-|w| tau / b}: exact, one step.
@@ -86,7 +87,7 @@ private:
   // the exponential step of a sliding bristle's direction over [tau, tau + d] from e0 (coulombSlide; w0, w1 the drive's
   // norms at the ends): false where it does not apply (more than a right angle from the drive, a drive through zero).
   // Its error bounds the turn term's and the decay's at any pull; first_try (a step that is not stiff, tried before the
-  // explicit pair): the push at the middle checked along the nearer of the ends' angles
+  // Magnus step): the push at the middle checked along the nearer of the ends' angles
   struct Exponential
   {
     Eigen::Vector2d e1;  // the direction at the end
