@@ -380,11 +380,15 @@ bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
   long pool = work_budget_ - work_ - static_cast<long>(w_) * w_ * (kBristleWork + kPointWork);
   bool enough = true;
   long steps = 0;
+  const Eigen::Vector2d along = rowStep();
   for (int j = 0; j < w_; ++j)
+  {
+    const Eigen::Vector2d first = rowStart(j);
+    const std::size_t row = index(0, j);
     for (int i = 0; i < w_; ++i)
     {
-      const std::size_t p = index(i, j);
-      const Eigen::Vector2d x1 = position(i, j);
+      const std::size_t p = row + i;
+      const Eigen::Vector2d x1 = first + i * along;
       if (x1.squaredNorm() >= a2)
       {
         u_[p].setZero();  // outside the patch: undeformed (it re-enters under eq. 8)
@@ -432,6 +436,7 @@ bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
       step_error_[p] = s.step_error;
       inside_[p] = 1;
     }
+  }
   work_ += static_cast<long>(w_) * w_ * kBristleWork + steps * kStepWork;
   last_steps_ = steps;
   last_travel_ = std::min(std::sqrt(speed2) * dt, 2.0 * p_.a);
@@ -746,13 +751,17 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
   // ahead and behind (weight 1, no ramp from the edge); the upstream neighbour matters only to a bristle that slid less
   // than that far: elsewhere the motion is not needed.
   const double inner = p_.a - 2.0 * h_, inner2 = inner > 0.0 ? inner * inner : -1.0;
+  const Eigen::Vector2d along = rowStep();
   for (int j = 0; j < w_; ++j)
+  {
+    const Eigen::Vector2d first = rowStart(j);
+    const std::size_t row = index(0, j);
     for (int i = 0; i < w_; ++i)
     {
-      const std::size_t p = index(i, j);
+      const std::size_t p = row + i;
       if (!inside_[p])
         continue;
-      const Eigen::Vector2d x = position(i, j), &u = u_[p];
+      const Eigen::Vector2d x = first + i * along, &u = u_[p];
       const bool slides = sliding_[p];
       sliding += slides;
       const double r2 = x.squaredNorm(), q_z = cap.qz(r2);
@@ -776,6 +785,7 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
         ++count[k];
       }
     }
+  }
   if (count[0] == 0)
     return f;
   // Cell weight normalised so that the lattice sum of q_z is F_z: every bristle obeys |q| <= mu q_z, so

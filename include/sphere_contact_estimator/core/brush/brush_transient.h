@@ -164,6 +164,9 @@ private:
   {
     return o_ + R_ * Eigen::Vector2d((i - c0_) * h_, (j - c0_) * h_);
   }
+  // the same along row j in the loops over the whole lattice: its first point and the step from point to point
+  Eigen::Vector2d rowStart(int j) const { return position(0, j); }
+  Eigen::Vector2d rowStep() const { return h_ * R_.col(0); }
   void allocate();  // sizes the lattice for p_ and resets
   void resizeState(std::size_t size, bool scratch);  // the per-point arrays (or their scratch twins) to size points
   // without tilt: every bristle over the whole step along its straight path (lattice/bristle_advance.h); false where the
