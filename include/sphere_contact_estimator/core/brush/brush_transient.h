@@ -144,7 +144,8 @@ public:
   /// The work of one lattice point in one substep (BrushForces::work units; measured: about 100 ns under eq. 4b).
   static constexpr long kPointWork = 10;
   /// Without tilt: the work of one lattice point's closed forms over a whole update, and of one sliding step under eq.
-  /// (4b) (a step against two half steps).
+  /// (4b) (a Magnus step is about 1100 instructions, an adhering bristle's closed form about 60: the two together
+  /// keep the stream's most expensive messages within the budget's 1 ms, docs/benchmarks.md).
   static constexpr long kBristleWork = 3;
   static constexpr long kStepWork = 8;
   /// A bristle's sliding steps in one update (as many as the substeps' kMaxSubsteps): an update of three transits at
