@@ -476,7 +476,6 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
         crosses = RimIntegral::crossings(p.t0, p.t1, p.t2, cross_a, cross_b) ? 1 : 0;
       if (crosses > 0)
       {
-        const Quadratic tq{ p.t0 + tau * (p.t1 + tau * p.t2), p.t1 + 2.0 * tau * p.t2, p.t2 };  // from the step's start
         const double s_a = cross_a - tau, s_b = cross_b - tau;  // the crossings from the step's start
         const double rho = std::min(-s_a, s_b - d);
         if (rho > d || !(d < s_b))
@@ -486,6 +485,7 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
         }
         else
         {
+          const Quadratic tq{ p.t0 + tau * (p.t1 + tau * p.t2), p.t1 + 2.0 * tau * p.t2, p.t2 };  // from the step's start
           const RimIntegral integral(m_, tq.t0, tq.t1, tq.t2, s_a, s_b, d);
           const double P_dot = w_dot_.dot(e0), Q_dot = e0.x() * w_dot_.y() - e0.y() * w_dot_.x();
           const double scale = 0.5 * integral.stretchedLength() / c_;
@@ -559,9 +559,15 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
     };
     // t over the step on its cubic Hermite interpolant (t and t' = A + B t - A t^2 at the ends; t = 0 at the start)
     const double t1 = y1 / y2;
-    const auto rate = [&](int i, double ti) {
+    // the Riccati coefficients at point i: B = -P / b, A = Q / (2 b)
+    const auto coefficients = [&](int i, double& A, double& B) {
       const double inv_b = q[i].b > 0.0 ? 1.0 / q[i].b : 0.0;
-      const double B = -P[i] * inv_b, A = 0.5 * Q[i] * inv_b;
+      B = -P[i] * inv_b;
+      A = 0.5 * Q[i] * inv_b;
+    };
+    const auto rate = [&](int i, double ti) {
+      double A, B;
+      coefficients(i, A, B);
       return A + ti * (B - A * ti);
     };
     const double f0 = rate(0, 0.0) * d, f1 = rate(4, t1) * d;
@@ -613,13 +619,13 @@ double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_st
     }
     // the carried error: the bound's ratio, and the pull's contraction of a direction error (d/dt of the right side is
     // B - 2 A t; the larger of its values at the ends)
-    const auto slope = [&](const Point& qq, double ti) {
-      const double inv_b = qq.b > 0.0 ? 1.0 / qq.b : 0.0;
-      const double B = -qq.w.dot(e0) * inv_b, A = 0.5 * (e0.x() * qq.w.y() - e0.y() * qq.w.x()) * inv_b;
+    const auto slope = [&](int i, double ti) {
+      double A, B;
+      coefficients(i, A, B);
       return B - 2.0 * A * ti;
     };
     // (1 / (1 + x) >= e^-x: never less than the decay)
-    const double growth = 1.0 / (1.0 + std::max(0.0, -d * std::max(slope(q0, 0.0), slope(q1, t1))));
+    const double growth = 1.0 / (1.0 + std::max(0.0, -d * std::max(slope(0, 0.0), slope(4, t1))));
     s.step_error = s.step_error * (q0.b > 0.0 ? std::min(1.0, q1.b / q0.b) : 1.0) * growth + error;
     s.u = q1.b * direction(t1);
     tau += d;
