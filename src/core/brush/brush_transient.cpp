@@ -671,15 +671,19 @@ void BrushTransient::recentre()
   o_ += R_ * Eigen::Vector2d(di * h_, dj * h_);
 }
 
-BrushTransient::Motion BrushTransient::motionAt(const Eigen::Vector2d& x) const
+Eigen::Vector2d BrushTransient::headingAt(const Eigen::Vector2d& x) const
+{
+  const Eigen::Vector2d v = Eigen::Vector2d(-omega_gamma_ * x.y(), omega_gamma_ * x.x()) - V_r_;
+  return v.squaredNorm() > 0.0 ? v.normalized() : Eigen::Vector2d::Zero();
+}
+
+BrushTransient::Motion BrushTransient::motionAt(const Eigen::Vector2d& x, const Eigen::Vector2d& e) const
 {
   // along this bristle's motion: how far the patch edge lies ahead and behind, and which lattice neighbour is upstream
   // (the lattice axis nearest the motion)
   Motion m;
-  const Eigen::Vector2d v = Eigen::Vector2d(-omega_gamma_ * x.y(), omega_gamma_ * x.x()) - V_r_;
-  if (v.squaredNorm() > 0.0)
+  if (e.squaredNorm() > 0.0)
   {
-    const Eigen::Vector2d e = v.normalized();
     const double b = x.dot(e), c = x.squaredNorm() - p_.a * p_.a, root = std::sqrt(std::max(0.0, b * b - c));
     m.ahead = -b + root;
     m.behind = b + root;
@@ -737,12 +741,14 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
   // part that the cells cut by the patch edge and by the onsets add (measured over noisy histories at random points,
   // test_brush_transient: without a factor the estimate fell short at 0.2-0.5 % of them, by up to 2.7x).
   BrushForces f;
-  Eigen::Vector2d F[5];
-  double M_z[5] = {}, load[5] = {};
+  // by lattice (0: the full one, 1-4: the sub-lattices), the cells that differ between them (near the edge or an onset);
+  // the plain cells, the same on both, by sub-lattice only (the full lattice's are their sum)
+  Eigen::Vector2d F[5], F_plain[5];
+  double M_z[5] = {}, load[5] = {}, M_z_plain[5] = {}, load_plain[5] = {};
   double step_error = 0.0;  // eq. (4b): the sum of the bristles' time-step errors, each over its cell
-  int count[5] = {};
-  for (auto& v : F)
-    v.setZero();
+  int count[5] = {}, count_plain[5] = {};
+  for (int k = 0; k < 5; ++k)
+    F[k].setZero(), F_plain[k].setZero();
   double utilisation2 = 0.0;  // (|u| / bound)^2
   int sliding = 0;
   const FrictionCap cap(p_);
@@ -752,6 +758,8 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
   // than that far: elsewhere the motion is not needed.
   const double inner = p_.a - 2.0 * h_, inner2 = inner > 0.0 ? inner * inner : -1.0;
   const Eigen::Vector2d along = rowStep();
+  const bool turning = omega_gamma_ != 0.0;
+  const Eigen::Vector2d heading = turning ? Eigen::Vector2d::Zero() : headingAt(Eigen::Vector2d::Zero());
   for (int j = 0; j < w_; ++j)
   {
     const Eigen::Vector2d first = rowStart(j);
@@ -772,11 +780,21 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
         utilisation2 = std::max(utilisation2, u.squaredNorm() / (bound * bound));
       // plain: cellSum's weight is 1 and its cell u on both lattices, and the motion is not needed
       const bool plain = !(r2 > inner2 || (slides && slip_travel_[p] < 2.0 * h_));
-      const Motion motion = plain ? Motion{} : motionAt(x);
-      for (int k : { 0, 1 + (i & 1) + 2 * (j & 1) })
+      const int sub = 1 + (i & 1) + 2 * (j & 1);
+      if (plain)
+      {
+        F_plain[sub] += u;
+        M_z_plain[sub] += x.x() * u.y() - x.y() * u.x();
+        load_plain[sub] += q_z;
+        step_error += step_error_[p];
+        ++count_plain[sub];
+        continue;
+      }
+      const Motion motion = motionAt(x, turning ? headingAt(x) : heading);
+      for (int k : { 0, sub })
       {
         double weight = 1.0;
-        const Eigen::Vector2d cell = plain ? u : cellSum(i, j, motion, k, weight);
+        const Eigen::Vector2d cell = cellSum(i, j, motion, k, weight);
         F[k] += cell;
         M_z[k] += x.x() * cell.y() - x.y() * cell.x();
         load[k] += weight * q_z;
@@ -785,6 +803,17 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
         ++count[k];
       }
     }
+  }
+  for (int k = 1; k <= 4; ++k)
+  {
+    F[0] += F_plain[k];
+    M_z[0] += M_z_plain[k];
+    load[0] += load_plain[k];
+    count[0] += count_plain[k];
+    F[k] += F_plain[k];
+    M_z[k] += M_z_plain[k];
+    load[k] += load_plain[k];
+    count[k] += count_plain[k];
   }
   if (count[0] == 0)
     return f;

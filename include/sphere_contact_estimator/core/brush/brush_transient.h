@@ -189,7 +189,10 @@ private:
     double ahead = INFINITY, behind = INFINITY;
     int di = 0, dj = 0;
   };
-  Motion motionAt(const Eigen::Vector2d& x) const;
+  // the motion's direction at x (unit; zero at rest) and, in it, the motion at x (without tilt the direction is the
+  // same everywhere: the sums take it once)
+  Eigen::Vector2d headingAt(const Eigen::Vector2d& x) const;
+  Motion motionAt(const Eigen::Vector2d& x, const Eigen::Vector2d& e) const;
   Eigen::Vector2d cellSum(int i, int j, const Motion& m, int k, double& weight) const;
   // The sums, and the estimate's two parts: what the steps, streaks and rows bound (fixed), and kSpreadFactor times the
   // sub-lattices' largest spread from the full sum (spread).
