@@ -141,13 +141,21 @@ public:
   double spacing() const { return h_; }
 
   static constexpr int kMaxSubsteps = 4096;
-  /// The work of one lattice point in one substep (BrushForces::work units; measured: about 100 ns under eq. 4b).
+  /// Work in BrushForces::work units (about 10 ns, 50 instructions on this machine kind): one lattice point in one
+  /// substep (measured: about 100 ns under eq. 4b)
   static constexpr long kPointWork = 10;
-  /// Without tilt: the work of one lattice point's closed forms over a whole update, and of one sliding step under eq.
-  /// (4b) (a Magnus step is about 1100 instructions, an adhering bristle's closed form about 60: the two together
-  /// keep the stream's most expensive messages within the budget's 1 ms, docs/benchmarks.md).
-  static constexpr long kBristleWork = 3;
-  static constexpr long kStepWork = 8;
+  /// and without tilt, from callgrind's instruction counts along both recorded streams: a lattice point over a whole
+  /// update (the loop, an adhering bristle's closed form and the window's recentring, about 100 instructions, and the
+  /// onsets of sliding looked for, a quartic's roots, about 450 each, on the weave at 100 Hz at more than half the
+  /// points: reserved before the bristles are advanced, so that what the sliding steps may take is known), the sums over
+  /// the lattice and its sub-lattices (about 100 a point inside the patch), and a sliding step tried under eq. (4b) (a
+  /// Magnus step, an exponential one or a rejection with its share of its piece's setup: 1060-1210 a step along the
+  /// streams). Timed per message, the transient model's units cost at most 9.2-11.5 ns along the manoeuvre and
+  /// config/hostile_scenario.yaml; the previous 3 / 10 / 8 units had cost up to 20 ns, and auto's messages within the
+  /// budget up to 1.3 ms (docs/speed_and_accuracy.md).
+  static constexpr long kBristleWork = 8;
+  static constexpr long kSumWork = 2;
+  static constexpr long kStepWork = 22;
   /// A bristle's sliding steps in one update (as many as the substeps' kMaxSubsteps): an update of three transits at
   /// resolution 128 needs a few hundred where the bristles are stiff; auto's budget bounds them far sooner
   static constexpr int kMaxBristleSteps = 4096;
