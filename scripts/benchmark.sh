@@ -32,6 +32,16 @@ fi
 /usr/bin/python3 "$REPO/scripts/stream_benchmark.py" --bag-analyze "$BIN/bag_analyze" --params "$REPO/config/contact_estimator.yaml" \
   --scenario "$REPO/config/manoeuvre_scenario.yaml" --reference-resolution 128 \
   --bags "$REPO/data/manoeuvre.bag" "$OUT/manoeuvre_1khz.bag" --out "$OUT/streams.json"
+log "a hostile stream (config/hostile_scenario.yaml: nearly every bristle sliding) at 100 and 30 Hz: does the work budget keep a message within 1 ms"
+for rate in 100 30; do
+  if [ ! -s "$OUT/hostile_$rate.bag" ]; then
+    roslaunch sphere_contact_estimator demo.launch scenario:="$REPO/config/hostile_scenario.yaml" rate:=$rate \
+      record:="$OUT/hostile_$rate.bag" output_csv:="$OUT/hostile_${rate}_live.csv" > "$OUT/hostile_record.log" 2>&1 || true
+  fi
+done
+/usr/bin/python3 "$REPO/scripts/stream_benchmark.py" --bag-analyze "$BIN/bag_analyze" --params "$REPO/config/contact_estimator.yaml" \
+  --scenario "$REPO/config/hostile_scenario.yaml" --reference-resolution 128 \
+  --bags "$OUT/hostile_100.bag" "$OUT/hostile_30.bag" --out "$OUT/hostile.json"
 log "node over roscpp on loopback (the node pinned to one core), the recorded manoeuvres at their pace, and bag replay"
 PORT=$((20000 + RANDOM % 20000))
 export ROS_MASTER_URI="http://localhost:$PORT"
@@ -55,6 +65,6 @@ log "100 random robots (about 50 minutes)"
 "$BIN/calibration_accuracy" --seeds 100 --floors 100 --robots 100 > "$OUT/calibration.json"
 /usr/bin/python3 "$REPO/scripts/benchmark_report.py" --bench "$OUT/bench.json" --accuracy "$OUT/accuracy.json" \
   --node "$OUT/node.json" --bag "$OUT/bag.json" --default-brush-model "$(default_brush_model)" \
-  --replay "$OUT/replay.json" "$OUT/replay_tf.json" "$OUT/writers.json" --streams "$OUT/streams.json" --replay-profile "$REPO/bench/replay_profile.md" \
+  --replay "$OUT/replay.json" "$OUT/replay_tf.json" "$OUT/writers.json" --streams "$OUT/streams.json" --hostile "$OUT/hostile.json" --replay-profile "$REPO/bench/replay_profile.md" \
   --calibration "$OUT/calibration.json" \
   --docs "$REPO/docs"

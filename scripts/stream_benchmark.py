@@ -81,9 +81,15 @@ def quantile(v, q):
     return v[i] + (v[j] - v[i]) * (pos - i)
 
 
+# messages of at least this much counted work say what a unit costs (below, the fixed costs of a message dominate)
+HEAVY_WORK = 20000
+
+
 def summarise(rows):
     times = [1e6 * float(r["compute_time"]) for r in rows]
     works = [float(r["work"]) for r in rows]
+    # the time a counted unit took [ns], over the heavy messages: the work budget's units are meant as about 10 ns
+    per_unit = [1e3 * t / w for t, w in zip(times, works) if w >= HEAVY_WORK]
     flagged = [r for r in rows if int(r["brush_flags"]) & FLAG_ACCURACY_NOT_MET]
     truncated = sum(1 for r in rows if int(r["brush_flags"]) & FLAG_SUBSTEPS_TRUNCATED)
     clean = [r for r in rows if not int(r["brush_flags"]) & FLAG_ACCURACY_NOT_MET]
@@ -93,6 +99,10 @@ def summarise(rows):
     short = [r for r in rows if r["_error"] > float(r["brush_error_estimate"]) + r["_reference_error"]]
     worst_short = max(short, key=lambda r: r["_error"] / max(float(r["brush_error_estimate"]) + r["_reference_error"],
                                                              1e-300), default=None)
+    # the difference from half the resolution is not a bound on the reference's error: on the hostile stream at 30 Hz
+    # the reference at 128 was further from 256 than from 64 at 12 of 181 messages (by up to 3.7e-5 of mu F_z); its own
+    # error estimate is one (by the lattice's design; tested), so a miss beyond it is resolved by the reference
+    resolved = [r for r in short if r["_error"] > float(r["brush_error_estimate"]) + r["_reference_bound"]]
     models = {}
     for r in rows:
         key = MODELS.get(r["brush_model_used"], r["brush_model_used"])
@@ -103,6 +113,8 @@ def summarise(rows):
         "messages": len(rows),
         "time_us": {"p50": quantile(times, 0.5), "p99": quantile(times, 0.99), "max": max(times) if times else None},
         "work": {"p50": quantile(works, 0.5), "p99": quantile(works, 0.99), "max": max(works) if works else None},
+        "ns_per_unit": {"heavy_messages": len(per_unit), "p50": quantile(per_unit, 0.5),
+                        "max": max(per_unit) if per_unit else None},
         "models": models,
         "flagged": len(flagged),
         "flagged_substeps_truncated": truncated,
@@ -111,6 +123,7 @@ def summarise(rows):
         "unflagged_error_p99": quantile(errors, 0.99),
         "unflagged_over_target": len(over),
         "estimate_short": len(short),
+        "estimate_short_resolved": len(resolved),
         "estimate_short_worst": None if worst_short is None else {
             "stamp": float(worst_short["stamp"]), "error": worst_short["_error"],
             "estimate": float(worst_short["brush_error_estimate"]), "reference_error": worst_short["_reference_error"]},
@@ -154,6 +167,7 @@ def main():
             for r, q, f, c in zip(rows, strict, fine, coarse):
                 r["_error"], q["_error"] = error(r, f), error(q, f)
                 r["_reference_error"] = q["_reference_error"] = error(c, f)
+                r["_reference_bound"] = q["_reference_bound"] = max(error(c, f), float(f["brush_error_estimate"]))
                 t = float(r["stamp"]) - t0
                 r["_segment"] = next((p[0] for p in parts if p[1] <= t < p[2] + 1e-9), parts[-1][0])
             duration = float(rows[-1]["stamp"]) - t0
