@@ -166,8 +166,9 @@ def main():
             t0 = float(rows[0]["stamp"])
             for r, q, f, c in zip(rows, strict, fine, coarse):
                 r["_error"], q["_error"] = error(r, f), error(q, f)
-                r["_reference_error"] = q["_reference_error"] = error(c, f)
-                r["_reference_bound"] = q["_reference_bound"] = max(error(c, f), float(f["brush_error_estimate"]))
+                own = error(c, f)  # the reference's difference from half its resolution
+                r["_reference_error"] = q["_reference_error"] = own
+                r["_reference_bound"] = q["_reference_bound"] = max(own, float(f["brush_error_estimate"]))
                 t = float(r["stamp"]) - t0
                 r["_segment"] = next((p[0] for p in parts if p[1] <= t < p[2] + 1e-9), parts[-1][0])
             duration = float(rows[-1]["stamp"]) - t0

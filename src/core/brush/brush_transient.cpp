@@ -748,7 +748,10 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
   double step_error = 0.0;  // eq. (4b): the sum of the bristles' time-step errors, each over its cell
   int count[5] = {}, count_plain[5] = {};
   for (int k = 0; k < 5; ++k)
-    F[k].setZero(), F_plain[k].setZero();
+  {
+    F[k].setZero();
+    F_plain[k].setZero();
+  }
   double utilisation2 = 0.0;  // (|u| / bound)^2
   int sliding = 0;
   const FrictionCap cap(p_);
