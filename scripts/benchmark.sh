@@ -42,6 +42,9 @@ done
 /usr/bin/python3 "$REPO/scripts/stream_benchmark.py" --bag-analyze "$BIN/bag_analyze" --params "$REPO/config/contact_estimator.yaml" \
   --scenario "$REPO/config/hostile_scenario.yaml" --reference-resolution 128 \
   --bags "$OUT/hostile_100.bag" "$OUT/hostile_30.bag" --out "$OUT/hostile.json"
+log "random robots on random manoeuvres (scripts/stream_sweep.py, 24 seeded streams; about 12 minutes)"
+/usr/bin/python3 "$REPO/scripts/stream_sweep.py" --bag-analyze "$BIN/bag_analyze" --dir "$OUT/sweep" --streams 24 \
+  --seed 1000 --out "$OUT/sweep.json"
 log "node over roscpp on loopback (the node pinned to one core), the recorded manoeuvres at their pace, and bag replay"
 PORT=$((20000 + RANDOM % 20000))
 export ROS_MASTER_URI="http://localhost:$PORT"
@@ -65,6 +68,6 @@ log "100 random robots (about 50 minutes)"
 "$BIN/calibration_accuracy" --seeds 100 --floors 100 --robots 100 > "$OUT/calibration.json"
 /usr/bin/python3 "$REPO/scripts/benchmark_report.py" --bench "$OUT/bench.json" --accuracy "$OUT/accuracy.json" \
   --node "$OUT/node.json" --bag "$OUT/bag.json" --default-brush-model "$(default_brush_model)" \
-  --replay "$OUT/replay.json" "$OUT/replay_tf.json" "$OUT/writers.json" --streams "$OUT/streams.json" --hostile "$OUT/hostile.json" --replay-profile "$REPO/bench/replay_profile.md" \
+  --replay "$OUT/replay.json" "$OUT/replay_tf.json" "$OUT/writers.json" --streams "$OUT/streams.json" --hostile "$OUT/hostile.json" --sweep "$OUT/sweep.json" --replay-profile "$REPO/bench/replay_profile.md" \
   --calibration "$OUT/calibration.json" \
   --docs "$REPO/docs"
