@@ -14,7 +14,10 @@ namespace sphere_contact_estimator::path
 namespace
 {
 constexpr double kHalfPi = 1.5707963267948966;
-constexpr long kStepWork = 40;       // three points and the Newton iterations (PathIntegrals::work units)
+// A step: three points and the Newton iterations, 2700-3100 instructions (callgrind), in PathIntegrals::work units of
+// about 10 ns: 40 made a steady message within the work budget take 13.5-15 ns a unit at random robots' heavy spin
+// (scripts/stream_sweep.py, seed 1030: 1.3-1.4 ms at 94 000 units), the lattice's units at most 11.5.
+constexpr long kStepWork = 60;
 constexpr int kMaxSteps = 2000;      // attempted steps; beyond, the general solver takes the piece over
 constexpr int kMaxNewton = 7;
 constexpr double kNewtonStop = 1e-5;  // the last Newton correction on the stages' t
