@@ -11,8 +11,9 @@ message whose error is above its accuracy target by more than the reference's ow
 estimate; the summary counts them, and every estimate below its error. A stream's first messages, before the reference
 describes the same contact as auto (warm_up: the history before the recording is unknown), are timed but not compared.
 A second pass at accuracy_target 0.1 % (auto_noise_fraction 0) is summarised beside the default one. Grouped per
-segment of the scenario (--scenario) and over the whole stream. bag_analyze's speed (the fastest of three runs) against
-the bag's duration gives the times real time.
+segment of the scenario (--scenario) and over the whole stream. A message's time is the fastest of three replays (which
+must answer alike); bag_analyze's speed (the fastest of the three) against the bag's duration gives the times real
+time.
 
 Usage: stream_benchmark.py --bag-analyze PATH --bags A.bag [B.bag ...] --scenario config/manoeuvre_scenario.yaml
                            [--params config/contact_estimator.yaml] [--reference-resolution 128] [--out JSON]
@@ -79,6 +80,22 @@ def warm_up(rows, path):
         if travel >= 2.0 * float(rows[i]["patch_radius"]):
             return i + 1
     return len(rows)
+
+
+def fastest(runs, bag):
+    """One replay's rows with each message's compute time the fastest of the replays': a message's cost, not the
+    machine's other tenants (a preempted message took 9-14 ms in one replay of a slow hour). The replays must answer
+    alike, the work being counted, not timed."""
+    rows = runs[0]
+    for other in runs[1:]:
+        if len(other) != len(rows):
+            sys.exit("%s: the replays answered different numbers of messages" % bag)
+        for r, o in zip(rows, other):
+            for key in ("brush_fx", "brush_fy", "brush_mz", "brush_error_estimate", "brush_flags", "work"):
+                if r[key] != o[key]:
+                    sys.exit("%s: the replays differ at %s (%s: %s against %s)" % (bag, r["stamp"], key, r[key], o[key]))
+            r["compute_time"] = str(min(float(r["compute_time"]), float(o["compute_time"])))
+    return rows
 
 
 def read(path):
@@ -185,19 +202,21 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for bag in a.bags:
             name = os.path.splitext(os.path.basename(bag))[0]
-            default_csv = os.path.join(tmp, name + ".csv")
-            walls = [run(a.bag_analyze, bag, default_csv, a.params, {}) for _ in range(3)]
+            replays = [os.path.join(tmp, "%s_%d.csv" % (name, k)) for k in range(3)]
+            walls = [run(a.bag_analyze, bag, path, a.params, {}) for path in replays]
+            default_csv = replays[0]
             reference = {}
             for n in (a.reference_resolution, a.reference_resolution // 2):
                 path = os.path.join(tmp, "%s_%d.csv" % (name, n))
                 run(a.bag_analyze, bag, path, a.params,
                     {"resolution": n, "work_budget": 1000000000, "propagate_covariance": "false"}, "transient")
                 reference[n] = read(path)
-            rows = read(default_csv)
+            rows = fastest([read(path) for path in replays], bag)
             # the strict target: accuracy_target 0.1 %, not raised to the noise's share
-            strict_csv = os.path.join(tmp, name + "_strict.csv")
-            run(a.bag_analyze, bag, strict_csv, a.params, STRICT)
-            strict = read(strict_csv)
+            strict_replays = [os.path.join(tmp, "%s_strict_%d.csv" % (name, k)) for k in range(3)]
+            for path in strict_replays:
+                run(a.bag_analyze, bag, path, a.params, STRICT)
+            strict = fastest([read(path) for path in strict_replays], bag)
             fine, coarse = reference[a.reference_resolution], reference[a.reference_resolution // 2]
             if not (len(rows) == len(fine) == len(coarse) == len(strict)):
                 sys.exit("%s: the runs answered different messages (%d, %d, %d, %d)"
