@@ -185,6 +185,11 @@ def fmt_order(x):
     return "-" if x is None else "%.2f" % x
 
 
+def fmt_models(models):
+    """'transient 32 1468, steady 5': the models a stream ran, the most used first"""
+    return ", ".join("%s %d" % (k, n) for k, n in sorted(models.items(), key=lambda kv: -kv[1]))
+
+
 def fmt_share(n, total):
     if not total:
         return "-"
@@ -675,7 +680,7 @@ def streams_section(streams, node):
         rows = list(s["segments"].items()) + [("**all**", a)]
         for name, v in rows:
             t = v["time_us"]
-            models = ", ".join("%s %d" % (k, n) for k, n in sorted(v["models"].items(), key=lambda kv: -kv[1]))
+            models = fmt_models(v["models"])
             lines.append("| %s | %d | %s | %s | %s | %.0f | %s | %s | %s | %d | %s | %s |" % (
                 name, v["messages"], fmt_us(t["p50"]), fmt_us(t["p99"]), fmt_us(t["max"]), v["work"]["max"], models,
                 fmt_share(v["flagged"], v["messages"]), fmt_err(v["unflagged_error_max"]) if v["unflagged_error_max"] is not None else "–",
@@ -723,7 +728,7 @@ def hostile_section(hostile):
     for s in hostile.get("streams", []):
         a = s["all"]
         t, u = a["time_us"], a.get("ns_per_unit", {})
-        models = ", ".join("%s %d" % (k, n) for k, n in sorted(a["models"].items(), key=lambda kv: -kv[1]))
+        models = fmt_models(a["models"])
         per_unit = ("%.1f, %.1f (%d)" % (u["p50"], u["max"], u["heavy_messages"])) if u.get("max") is not None else "–"
         lines.append("| %s | %d | %s | %s | %s | %.0f | %s | %s | %s | %d | %s |" % (
             s["bag"], s["messages"], fmt_us(t["p50"]), fmt_us(t["p99"]), fmt_us(t["max"]), a["work"]["max"], per_unit,

@@ -272,7 +272,7 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
     // fewer substeps than accuracy wants where the work budget cannot pay for them (auto, at its coarsest lattice): the
     // answer then makes no claim beyond the friction circle's
     const long point_work = static_cast<long>(w_) * w_ * kPointWork;
-    const long affordable = (work_budget_ - static_cast<long>(w_) * w_ * kSumWork) / point_work;  // and the sums
+    const long affordable = (work_budget_ - sumsWork()) / point_work;  // and the sums
     if (count > affordable)
     {
       count = static_cast<int>(std::max(1L, affordable));
@@ -292,7 +292,7 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   const Slips slips = computeSlips(kin, p_.standstill_speed);
   // the rows' correction within what the work budget leaves after the lattice's steps and the sums
   work_ += rows_->update(p_, slips, { R_, position(0, 0), h_, w_ }, held, travel, fill_travel_,
-                        work_budget_ - work_ - static_cast<long>(w_) * w_ * kSumWork);
+                        work_budget_ - work_ - sumsWork());
   // the rows' correction holds the streaks once every bristle in the patch entered under the inputs it is of
   const bool corrected = held_travel_ >= 2.0 * p_.a && rows_->of(slips, p_);
   streak_estimate_ = corrected ? 0.0 : streakBound(slips);
@@ -329,7 +329,7 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   f.sliding_fraction = g.sliding_fraction;
   f.max_utilisation = g.max_utilisation;
   f.error_estimate = estimate(fixed, spread) + (short_of_work ? 2.0 : 0.0);
-  work_ += static_cast<long>(w_) * w_ * kSumWork;  // the sums over the lattice and its sub-lattices
+  work_ += sumsWork();
   f.work = work_;
   return f;
 }
@@ -359,10 +359,10 @@ long BrushTransient::predictWork(const ContactKinematics& kin, double dt) const
     // bristle's steps end with its path: no more than a transit's)
     const double travel = std::min(kin.V_r.norm() * std::max(dt, 0.0), 2.0 * p_.a);
     const double steps = last_steps_ / std::max(last_travel_, h_) * travel;
-    return static_cast<long>(w_) * w_ * (kBristleWork + kSumWork) + static_cast<long>(steps) * kStepWork;
+    return static_cast<long>(w_) * w_ * kBristleWork + sumsWork() + static_cast<long>(steps) * kStepWork;
   }
   const int n = dt > 0.0 ? substeps(kin, dt) : 0;
-  return (static_cast<long>(n < 0 ? kMaxSubsteps : n) * kPointWork + kSumWork) * w_ * w_;
+  return static_cast<long>(n < 0 ? kMaxSubsteps : n) * kPointWork * w_ * w_ + sumsWork();
 }
 
 bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
@@ -377,7 +377,7 @@ bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
   const lattice::BristleAdvance advance(p_, kin, timeTolerance());
   // the sliding steps within what the budget leaves after every bristle's closed forms and the sums; past it, each
   // bristle's remainder in one step (its error counted in the estimate)
-  long pool = work_budget_ - work_ - static_cast<long>(w_) * w_ * (kBristleWork + kSumWork);
+  long pool = work_budget_ - work_ - static_cast<long>(w_) * w_ * kBristleWork - sumsWork();
   bool enough = true;
   long steps = 0;
   const Eigen::Vector2d along = rowStep();

@@ -205,6 +205,7 @@ private:
   // The sums, and the estimate's two parts: what the steps, streaks and rows bound (fixed), and kSpreadFactor times the
   // sub-lattices' largest spread from the full sum (spread).
   BrushForces sums(double& fixed, double& spread) const;
+  long sumsWork() const { return static_cast<long>(w_) * w_ * kSumWork; }  // what sums() counts
   // 2 covered the envelope's random noisy histories (test_brush_transient), but at the default robot's parameters (a =
   // 1 cm, k = 2e8 N/m^3, 49 N, mu 0.8: an adhesion zone over most of the patch, a thin sliding crescent) at resolution
   // 32, against 256, the error passed the estimate (beyond the reference's own) at 4 of 13 200 messages of random noisy
