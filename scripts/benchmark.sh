@@ -12,6 +12,13 @@ default_brush_model() {
   m=$(sed -n 's/^brush_model: *\([a-z0-9]*\).*/\1/p' "$REPO/config/contact_estimator.yaml")
   case "$m" in off) echo 0 ;; linear) echo 1 ;; steady) echo 2 ;; transient) echo 3 ;; auto) echo 4 ;; *) echo "$m" ;; esac
 }
+# record_scenario SCENARIO RATE NAME: the scenario recorded by demo.launch at RATE into $OUT/NAME.bag (with the live
+# node's CSV beside it), unless that bag is already there; a failed recording shows as the missing bag further on
+record_scenario() {
+  [ -s "$OUT/$3.bag" ] && return 0
+  roslaunch sphere_contact_estimator demo.launch scenario:="$1" rate:="$2" record:="$OUT/$3.bag" \
+    output_csv:="$OUT/$3_live.csv" > "$OUT/$3_record.log" 2>&1 || true
+}
 install_deps
 build bench_models model_accuracy node_benchmark contact_estimator_node bag_analyze replay_benchmark calibration_accuracy
 mkdir -p "$OUT"
@@ -25,19 +32,13 @@ log "auto along the demo bag against the transient model at resolution 256 (abou
 /usr/bin/python3 "$REPO/scripts/bag_model_accuracy.py" --bag-analyze "$BIN/bag_analyze" --reference-resolution 256 \
   --before "$REPO/bench/demo_bag_before.json" --noise-fraction 0.25 --out "$OUT/bag.json"
 log "the recorded manoeuvre at 100 Hz (data/manoeuvre.bag) and 1 kHz (recorded now): every message against a converged reference (about 3 minutes)"
-if [ ! -s "$OUT/manoeuvre_1khz.bag" ]; then
-  roslaunch sphere_contact_estimator demo.launch scenario:="$REPO/config/manoeuvre_scenario.yaml" rate:=1000 \
-    record:="$OUT/manoeuvre_1khz.bag" output_csv:="$OUT/manoeuvre_1khz_live.csv" > "$OUT/manoeuvre_record.log" 2>&1 || true
-fi
+record_scenario "$REPO/config/manoeuvre_scenario.yaml" 1000 manoeuvre_1khz
 /usr/bin/python3 "$REPO/scripts/stream_benchmark.py" --bag-analyze "$BIN/bag_analyze" --params "$REPO/config/contact_estimator.yaml" \
   --scenario "$REPO/config/manoeuvre_scenario.yaml" --reference-resolution 128 \
   --bags "$REPO/data/manoeuvre.bag" "$OUT/manoeuvre_1khz.bag" --out "$OUT/streams.json"
 log "a hostile stream (config/hostile_scenario.yaml: nearly every bristle sliding) at 100 and 30 Hz: does the work budget keep a message within 1 ms"
 for rate in 100 30; do
-  if [ ! -s "$OUT/hostile_$rate.bag" ]; then
-    roslaunch sphere_contact_estimator demo.launch scenario:="$REPO/config/hostile_scenario.yaml" rate:=$rate \
-      record:="$OUT/hostile_$rate.bag" output_csv:="$OUT/hostile_${rate}_live.csv" > "$OUT/hostile_record.log" 2>&1 || true
-  fi
+  record_scenario "$REPO/config/hostile_scenario.yaml" "$rate" "hostile_$rate"
 done
 /usr/bin/python3 "$REPO/scripts/stream_benchmark.py" --bag-analyze "$BIN/bag_analyze" --params "$REPO/config/contact_estimator.yaml" \
   --scenario "$REPO/config/hostile_scenario.yaml" --reference-resolution 128 \
