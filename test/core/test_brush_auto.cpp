@@ -496,6 +496,60 @@ TEST(BrushAuto, ANoiseThatFallsBetweenLagChecksKeepsTheTargetPositive)
   EXPECT_GT(transient, 0);
 }
 
+TEST(BrushAuto, TheLagOnLeavingTheTransientModelHoldsTheNoiseBetweenChecks)
+{
+  // In the transient model the lag is checked every quarter radius of travel; a check takes the inputs' net change
+  // since the last one, not the noise's excursions between, which the bristles remember. Leaving with that lag, the
+  // steady family's estimate fell short of its error (scripts/stream_sweep.py seed 1062: a 5.4-mm patch at 1 kHz,
+  // rolling at 0.8-1 m/s with 9 % slip and the odometry's noise, by 1.2x beyond the reference's own estimate). Such
+  // streams here, auto at 1 % against the transient model at resolution 128 (its own estimate added): every answer of
+  // the steady family within its estimate (58 of them). Before the lag was checked at every message once a check found
+  // steady conditions, 7 of these 8 histories had answers short of it, by up to 1.24x (285 answers).
+  BrushParameters p;
+  p.a = 0.0054;
+  p.F_z = 13.95 * 9.81;
+  p.mu = 1.04;
+  p.k = 1.03e8;
+  p.pressure = PressureDistribution::Parabolic;
+  p.sliding_law = SlidingLaw::Coulomb;
+  p.standstill_speed = 0.05;
+  p.accuracy_target = 0.01;
+  p.resolution = 32;
+  BrushParameters fine = p;
+  fine.resolution = 128;
+  const double dt = 1e-3;
+  int steady_family = 0, short_count = 0, short_histories = 0;
+  double worst = 0.0;
+  for (int h = 0; h < 8; ++h)
+  {
+    const int short_before = short_count;
+    std::mt19937_64 rng(1062 + h);
+    std::normal_distribution<double> g(0.0, 1.0);
+    BrushAuto model(p);
+    BrushTransient reference(fine);
+    for (int m = 0; m < 250; ++m)
+    {
+      const double V = 0.8 + 0.2 * m / 250.0;
+      const Eigen::Vector2d sigma(0.09 + 0.015 * g(rng), 0.01 * g(rng));
+      const double phi = 1.0 * g(rng);
+      const ContactKinematics k = ContactKinematics::fromSlips(sigma, phi, 1.0, V);
+      const double step = m == 0 ? 8.0 * p.a / V : dt;
+      const BrushForces f = model.update(k, step), r = reference.update(k, step);
+      if (m < 20 || model.lastModel() == BrushModelKind::Transient)
+        continue;
+      ++steady_family;
+      const double ratio = forceDistance(f, r, p) / (f.error_estimate + r.error_estimate + 1e-300);
+      short_count += ratio > 1.0;
+      worst = std::max(worst, ratio);
+    }
+    short_histories += short_count > short_before;
+  }
+  RecordProperty("steady_family_answers", std::to_string(steady_family));
+  EXPECT_GT(steady_family, 20);
+  EXPECT_EQ(short_count, 0) << "worst error / estimate " << worst << " over " << steady_family << " answers, "
+                            << short_histories << " of the histories";
+}
+
 TEST(BrushAuto, EveryUpdatesWorkStaysWithinItsBudget)
 {
   // Random hostile histories (slips and spins over the envelope, jumps, standstill, spin in place, steps from 0.1 ms
