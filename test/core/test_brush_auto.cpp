@@ -545,6 +545,7 @@ TEST(BrushAuto, TheLagOnLeavingTheTransientModelHoldsTheNoiseBetweenChecks)
     short_histories += short_count > short_before;
   }
   RecordProperty("steady_family_answers", std::to_string(steady_family));
+  RecordProperty("worst_error_over_estimate", std::to_string(worst));
   EXPECT_GT(steady_family, 20);
   EXPECT_EQ(short_count, 0) << "worst error / estimate " << worst << " over " << steady_family << " answers, "
                             << short_histories << " of the histories";
