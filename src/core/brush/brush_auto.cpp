@@ -304,9 +304,10 @@ BrushAuto::SteadyCheck BrushAuto::checkSteady(const Slips& s, const Eigen::Vecto
   {
     lag_travel_ += s.V_r * dt;
     c.lag = last_check_.lag;
-    // the target may have fallen since that check (it follows the inputs' noise): the lag must still leave the steady
-    // family most of it, or the steady solver would be asked for target - lag <= 0
-    c.steady = c.steady && last_check_.steady && c.lag <= kLeavingLag * target;
+    // that check found no steady conditions, and none are taken without a check of this message's lag (a verdict
+    // carried between checks had also outlived its target, which follows the inputs' noise: the steady solver was then
+    // asked for target - lag <= 0)
+    c.steady = false;
     return c;
   }
   const double travel = s.V_r * dt + lag_travel_;
