@@ -211,19 +211,25 @@ void SteadyLag::rotate(double alpha)
 
 double SteadyLag::lag() const
 {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  // The steady model's changes (not split) forget at a rate between the slips' kernel and the slowest one: F's kernel
+  // for a change of both drives, and at least the load's share, which a sliding state keeps (the class's comment).
+  // Taking the slowest as an upper envelope bounds changes of one sign, not noise that alternates in sign, whose
+  // slow kernel's sum can cancel where the state's has not. For a true kernel that mixes the two ends, the sum is
+  // affine in the mixture's weight, so its size is largest at one of the ends: both ends are summed and the larger
+  // taken, per component.
+  Eigen::Vector3d slow_end = Eigen::Vector3d::Zero(), slip_end = Eigen::Vector3d::Zero();
   for (int i = 0; i < count_; ++i)
   {
     const Change& c = changes_[(first_ + i) % kCapacity];
     const double slow = memory(s_ - c.s), slip = memorySlip(s_ - c.s);
-    // F's kernel for a change of both drives; the steady model's changes (not split) at least the load's share, which
-    // a sliding state keeps (the class's comment)
     const double sliding = memorySliding(s_ - c.s);
     const double mixed = std::max(slip + c.spin_share * (slow - slip), sliding), slowest = std::max(slow, sliding);
-    sum += Eigen::Vector3d(slip, slip, slow).cwiseProduct(c.slip) + Eigen::Vector3d(slow, slow, slip).cwiseProduct(c.spin) +
-           Eigen::Vector3d(mixed, mixed, slowest).cwiseProduct(c.other);
+    const Eigen::Vector3d split =
+        Eigen::Vector3d(slip, slip, slow).cwiseProduct(c.slip) + Eigen::Vector3d(slow, slow, slip).cwiseProduct(c.spin);
+    slow_end += split + Eigen::Vector3d(mixed, mixed, slowest).cwiseProduct(c.other);
+    slip_end += split + slip * c.other;
   }
-  return sum.cwiseAbs().maxCoeff();
+  return slow_end.cwiseAbs().cwiseMax(slip_end.cwiseAbs()).maxCoeff();
 }
 
 }  // namespace sphere_contact_estimator
