@@ -302,7 +302,8 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   // turn
   const double turn = p_.tilt ? kin.omegaGamma() * std::max(dt, 0.0) : 0.0;
   const Eigen::Vector3d step(kin.V_r.x() * std::max(dt, 0.0), kin.V_r.y() * std::max(dt, 0.0), p_.a * turn);
-  if (step.norm() >= h_)
+  const double window = kWindowSpacings * h_;
+  if (step.norm() >= window)
     clearSpreadWindow();  // this update's own spread is its estimate's
   else
   {
@@ -311,12 +312,16 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
     other_phases_ = false;
     for (int i = 0; i < spread_count_; ++i)
     {
-      const double away = (phase_ - phase_at_[i]).norm();
-      if (away >= 0.125 * h_ && away < h_)
-      {
-        window_spread_ = std::max(window_spread_, spread_at_[i]);
-        other_phases_ = other_phases_ || away >= 0.25 * h_;
-      }
+      const Eigen::Vector3d moved = phase_ - phase_at_[i];
+      const double travelled = moved.norm();
+      if (travelled >= window)
+        continue;  // the patch has moved on
+      window_spread_ = std::max(window_spread_, spread_at_[i]);
+      // the lattice repeats every spacing along its axes: the phase is the displacement modulo a spacing. Seen from
+      // within a spacing, where the updates are dense enough to sample the error's pattern over the phases
+      Eigen::Vector2d l = R_.transpose() * moved.head<2>() / h_;
+      l -= l.array().round().matrix();
+      other_phases_ = other_phases_ || (travelled < h_ && std::hypot(h_ * l.norm(), moved.z()) >= 0.25 * h_);
     }
     spread_at_[spread_next_] = spread;
     phase_at_[spread_next_] = phase_;

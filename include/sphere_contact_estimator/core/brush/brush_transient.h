@@ -215,30 +215,36 @@ private:
   static constexpr double kSpreadFactor = 3.0;
 
   // The lattice's error changes with its phase against the patch edge, which repeats every spacing the roots roll
-  // (the cells the edge cuts, the onsets' cells): the sub-lattices' spread at one phase fell short of the error at
-  // another (by up to 1.4x at random points at resolution 128, uniform pressure, an adhesion zone shorter than a
-  // spacing). The estimate also takes the spreads of the recent updates at other phases: the lattice at least an eighth
-  // and less than a whole spacing away from where it stands now (parked or spinning in place the phase does not move,
-  // and the spreads of earlier messages tell nothing this one's does not). An update that rolls a spacing or more
-  // starts afresh.
+  // along the lattice's axes (the cells the edge cuts, the onsets' cells): the sub-lattices' spread at one phase fell
+  // short of the error at another (by up to 1.4x at random points at resolution 128, uniform pressure, an adhesion
+  // zone shorter than a spacing). It also changes from one message to the next at the same phase: on a noisy skid at
+  // 1 kHz (sweep seed 1136: each message rolled about a spacing, so every phase was nearly the same) the spread of
+  // consecutive messages varied fivefold while the error stayed put, and one message's estimate fell 2.1x short of
+  // its error. So the estimate takes the largest spread of the recent updates that rolled less than kWindowSpacings
+  // spacings from where the lattice stands now (the same contact: a quarter of the patch's diameter at resolution 32;
+  // four spacings still fell 1.8x short on such skids, test EstimateCoversNoisySkidsThatRollAboutASpacingAMessage):
+  // twice that, unless one of them within a spacing stood at another phase (the displacement modulo a spacing a
+  // quarter spacing or more), where the window has seen the error's pattern itself. An update that rolls
+  // kWindowSpacings spacings or more starts afresh.
   static constexpr int kSpreadWindow = 16;
+  static constexpr double kWindowSpacings = 8.0;
   std::array<double, kSpreadWindow> spread_at_{};
   std::array<Eigen::Vector3d, kSpreadWindow> phase_at_{};
   int spread_count_ = 0, spread_next_ = 0;
   // where the lattice stands against the patch since the window started: the roots' displacement (back and forth
   // under a parked robot's noise it goes nowhere) and, with tilt, their turn times a
   Eigen::Vector3d phase_ = Eigen::Vector3d::Zero();
-  double window_spread_ = 0.0;  // the largest spread at the other phases, at the last update
-  bool other_phases_ = false;   // whether it held one from a quarter spacing or more away, at the last update
-  // Where it holds none (after an update that rolled a spacing, parked, spinning in place, the first updates after
-  // those), the error at this phase may exceed the spreads seen: at the benchmark's hard point (test
+  double window_spread_ = 0.0;  // the largest spread of the window's other updates, at the last update
+  bool other_phases_ = false;   // whether one within a spacing stood at another phase, at the last update
+  // Where none stood at another phase (updates that roll a spacing or more, parked, spinning in place, the first
+  // updates after those), the error at this phase may exceed the spreads seen: at the benchmark's hard point (test
   // EstimateCoversTheErrorAtEveryPhaseOfTheLattice, held inputs, eighth-spacing updates after a three-transit one) by
   // 1.46x with the two nearest phases seen (1.53x of the spread part; 1.5 fell short there by 4 %); twice covers it.
   static constexpr double kUnseenPhases = 2.0;
-  // the published estimate from the sums' two parts (sums) and the other phases' spreads
+  // the published estimate from the sums' two parts (sums) and the window's spreads
   double estimate(double fixed, double spread) const
   {
-    return fixed + (other_phases_ ? std::max(spread, window_spread_) : kUnseenPhases * spread);
+    return fixed + (other_phases_ ? 1.0 : kUnseenPhases) * std::max(spread, window_spread_);
   }
   void clearSpreadWindow()
   {
