@@ -310,6 +310,9 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
     phase_ += step;
     window_spread_ = 0.0;
     other_phases_ = false;
+    // the updates since the last that rolled a spacing or more, each rolling less: dense enough to sample the error's
+    // pattern over the phases, where one stood at another
+    const bool dense = step.norm() < h_;
     for (int i = 0; i < spread_count_; ++i)
     {
       const Eigen::Vector3d moved = phase_ - phase_at_[i];
@@ -317,16 +320,19 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
       if (travelled >= window)
         continue;  // the patch has moved on
       window_spread_ = std::max(window_spread_, spread_at_[i]);
-      // the lattice repeats every spacing along its axes: the phase is the displacement modulo a spacing. Seen from
-      // within a spacing, where the updates are dense enough to sample the error's pattern over the phases
+      const int age = (spread_next_ - 1 - i + kSpreadWindow) % kSpreadWindow;  // 0: the last update's
+      if (!dense || age >= dense_run_ || travelled >= h_)
+        continue;
+      // the lattice repeats every spacing along its axes: the phase is the displacement modulo a spacing
       Eigen::Vector2d l = R_.transpose() * moved.head<2>() / h_;
       l -= l.array().round().matrix();
-      other_phases_ = other_phases_ || (travelled < h_ && std::hypot(h_ * l.norm(), moved.z()) >= 0.25 * h_);
+      other_phases_ = other_phases_ || std::hypot(h_ * l.norm(), moved.z()) >= 0.25 * h_;
     }
     spread_at_[spread_next_] = spread;
     phase_at_[spread_next_] = phase_;
     spread_next_ = (spread_next_ + 1) % kSpreadWindow;
     spread_count_ = std::min(spread_count_ + 1, kSpreadWindow);
+    dense_run_ = dense ? std::min(dense_run_ + 1, kSpreadWindow) : 0;
   }
   f.F_x = g.F_x;
   f.F_y = g.F_y;

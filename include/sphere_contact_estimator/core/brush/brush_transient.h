@@ -223,14 +223,17 @@ private:
   // its error. So the estimate takes the largest spread of the recent updates that rolled less than kWindowSpacings
   // spacings from where the lattice stands now (the same contact: a quarter of the patch's diameter at resolution 32;
   // four spacings still fell 1.8x short on such skids, test EstimateCoversNoisySkidsThatRollAboutASpacingAMessage):
-  // twice that, unless one of them within a spacing stood at another phase (the displacement modulo a spacing a
-  // quarter spacing or more), where the window has seen the error's pattern itself. An update that rolls
-  // kWindowSpacings spacings or more starts afresh.
+  // twice that, unless the updates since the last that rolled a spacing or more, each rolling less, had one within a
+  // spacing at another phase (the displacement modulo a spacing a quarter spacing or more): there the window has seen
+  // the error's pattern itself. At the same state the estimate is never below the one-spacing window's of before (its
+  // window only grows; its single factor needs as much). An update that rolls kWindowSpacings spacings or more starts
+  // afresh.
   static constexpr int kSpreadWindow = 16;
   static constexpr double kWindowSpacings = 8.0;
   std::array<double, kSpreadWindow> spread_at_{};
   std::array<Eigen::Vector3d, kSpreadWindow> phase_at_{};
   int spread_count_ = 0, spread_next_ = 0;
+  int dense_run_ = 0;  // how many of the newest updates rolled less than a spacing each (since one that rolled more)
   // where the lattice stands against the patch since the window started: the roots' displacement (back and forth
   // under a parked robot's noise it goes nowhere) and, with tilt, their turn times a
   Eigen::Vector3d phase_ = Eigen::Vector3d::Zero();
@@ -248,7 +251,7 @@ private:
   }
   void clearSpreadWindow()
   {
-    spread_count_ = spread_next_ = 0;
+    spread_count_ = spread_next_ = dense_run_ = 0;
     phase_.setZero();
     window_spread_ = 0.0;
     other_phases_ = false;
