@@ -748,10 +748,13 @@ def sweep_section(sweep):
              " place and parked, at 30, 100 or 1000 Hz with the demo's noise or up to twice it, recorded by"
              " demo.launch; every message through stream_benchmark.py as above (%d messages, %d compared). Over all:"
              " unflagged messages over the target %d at 1 %% and %d at 0.1 %%; estimates below the error %d and %d"
-             " beyond the reference's difference from half its resolution, %d and %d beyond its own error estimate."
+             " beyond the reference's difference from half its resolution, %d and %d beyond its own error estimate;"
+             " of those between the two, %s and %s still below the error against resolution 256 (its estimate as the"
+             " slack)."
              % (t["streams"], t["messages"], t["compared"], t["over_target"], t["over_target_strict"],
                 t["estimate_short"], t["estimate_short_strict"], t["estimate_short_resolved"],
-                t["estimate_short_resolved_strict"]), "",
+                t["estimate_short_resolved_strict"], t.get("estimate_short_at_256", "–"),
+                t.get("estimate_short_at_256_strict", "–")), "",
              "| seed | rate | a, k, mass, μ, pressure | segments | messages | flagged | over target (1 % / 0.1 %) |"
              " estimate below the error: beyond the difference, beyond the reference's estimate (1 % / 0.1 %) |"
              " time p99 | max | work max |",

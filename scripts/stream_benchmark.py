@@ -15,8 +15,13 @@ segment of the scenario (--scenario) and over the whole stream. A message's time
 must answer alike); bag_analyze's speed (the fastest of the three) against the bag's duration gives the times real
 time.
 
+Where an estimate is below its error beyond the reference's difference but within the reference's own estimate, the
+reference cannot tell; --confirm-resolution N (stream_sweep.py: 256) then runs the transient model at N as well and
+counts how many of those are still below their error against it, with its own estimate as the slack.
+
 Usage: stream_benchmark.py --bag-analyze PATH --bags A.bag [B.bag ...] --scenario config/manoeuvre_scenario.yaml
-                           [--params config/contact_estimator.yaml] [--reference-resolution 128] [--out JSON]
+                           [--params config/contact_estimator.yaml] [--reference-resolution 128]
+                           [--confirm-resolution 0] [--out JSON]
 """
 import argparse
 import csv
@@ -180,12 +185,41 @@ def summarise(rows):
         "unflagged_over_target": len(over),
         "estimate_short": len(short),
         "estimate_short_resolved": len(resolved),
+        # of those between the difference and the reference's estimate, how many were checked at --confirm-resolution
+        # and how many of them were still below the error there
+        "estimate_short_checked_finer": sum(1 for r in short if "_confirmed" in r),
+        "estimate_short_confirmed_finer": sum(1 for r in short if r.get("_confirmed")),
         "estimate_short_worst": None if worst_short is None else described(worst_short),
         # every estimate below its error beyond the reference's own estimate, where and what
         "estimate_short_resolved_messages": [described(r) for r in resolved[:20]],
         "reference_error_max": max((r["_reference_error"] for r in compared), default=None),
         "target_median": quantile([float(r["brush_accuracy_target"]) for r in rows], 0.5),
     }
+
+
+def ambiguous(r):
+    """an estimate below its error beyond the reference's difference from half its resolution, not beyond its own
+    estimate: the reference cannot tell (at seed 1136 of the sweep resolution 128's estimate hid estimates short by 2.1x
+    against 256)"""
+    return r["_error"] is not None and r["_error"] > float(r["brush_error_estimate"]) + r["_reference_error"] and \
+        not r["_error"] > float(r["brush_error_estimate"]) + r["_reference_bound"]
+
+
+def confirm(a, bag, tmp, name, rows, strict):
+    """The ambiguous messages of both passes against the transient model at --confirm-resolution (its own estimate as
+    the slack): _confirmed True where the estimate is still below the error, False where not; run only if any."""
+    if not any(ambiguous(r) for r in rows + strict):
+        return
+    path = os.path.join(tmp, "%s_%d.csv" % (name, a.confirm_resolution))
+    run(a.bag_analyze, bag, path, a.params,
+        {"resolution": a.confirm_resolution, "work_budget": 1000000000, "propagate_covariance": "false"}, "transient")
+    finer = read(path)
+    if len(finer) != len(rows):
+        sys.exit("%s: the confirming run answered %d messages, not %d" % (bag, len(finer), len(rows)))
+    for part in (rows, strict):
+        for r, f in zip(part, finer):
+            if ambiguous(r):
+                r["_confirmed"] = error(r, f) > float(r["brush_error_estimate"]) + float(f["brush_error_estimate"])
 
 
 def main():
@@ -195,6 +229,9 @@ def main():
     ap.add_argument("--scenario", required=True)
     ap.add_argument("--params", default=None)
     ap.add_argument("--reference-resolution", type=int, default=128)
+    ap.add_argument("--confirm-resolution", type=int, default=0,
+                    help="where an estimate is below its error beyond the reference's difference but not beyond its own "
+                         "estimate, run the reference at this resolution too and recount those against it (0: off)")
     ap.add_argument("--out", default=None)
     a = ap.parse_args()
     parts = segments(a.scenario)
@@ -230,6 +267,8 @@ def main():
                 r["_reference_bound"] = q["_reference_bound"] = max(own, float(f["brush_error_estimate"]))
                 t = r["_t"] = q["_t"] = float(r["stamp"]) - t0
                 r["_segment"] = q["_segment"] = next((p[0] for p in parts if p[1] <= t < p[2] + 1e-9), parts[-1][0])
+            if a.confirm_resolution:
+                confirm(a, bag, tmp, name, rows, strict)
             duration = float(rows[-1]["stamp"]) - t0
             stream = {"bag": os.path.basename(bag), "messages": len(rows), "not_compared": skipped,
                       "rate": (len(rows) - 1) / duration if duration > 0 else None, "duration": duration,
