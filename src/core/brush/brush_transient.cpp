@@ -298,42 +298,37 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   streak_estimate_ = corrected ? 0.0 : streakBound(slips);
   double fixed = 0.0, spread = 0.0;
   const BrushForces g = sums(fixed, spread);
-  // the spreads at other phases (clearSpreadWindow): the phase moves with the roots' displacement and, with tilt, their
+  // the spreads of the window (kWindowSpacings): the phase moves with the roots' displacement and, with tilt, their
   // turn
   const double turn = p_.tilt ? kin.omegaGamma() * std::max(dt, 0.0) : 0.0;
   const Eigen::Vector3d step(kin.V_r.x() * std::max(dt, 0.0), kin.V_r.y() * std::max(dt, 0.0), p_.a * turn);
   const double window = kWindowSpacings * h_;
-  if (step.norm() >= window)
-    clearSpreadWindow();  // this update's own spread is its estimate's
-  else
+  phase_ += step;
+  window_spread_ = 0.0;
+  other_phases_ = false;
+  // the updates since the last that rolled a spacing or more, each rolling less: dense enough to sample the error's
+  // pattern over the phases, where one stood at another
+  const bool dense = step.norm() < h_;
+  for (int i = 0; i < spread_count_; ++i)
   {
-    phase_ += step;
-    window_spread_ = 0.0;
-    other_phases_ = false;
-    // the updates since the last that rolled a spacing or more, each rolling less: dense enough to sample the error's
-    // pattern over the phases, where one stood at another
-    const bool dense = step.norm() < h_;
-    for (int i = 0; i < spread_count_; ++i)
-    {
-      const Eigen::Vector3d moved = phase_ - phase_at_[i];
-      const double travelled = moved.norm();
-      if (travelled >= window)
-        continue;  // the patch has moved on
-      window_spread_ = std::max(window_spread_, spread_at_[i]);
-      const int age = (spread_next_ - 1 - i + kSpreadWindow) % kSpreadWindow;  // 0: the last update's
-      if (!dense || age >= dense_run_ || travelled >= h_)
-        continue;
-      // the lattice repeats every spacing along its axes: the phase is the displacement modulo a spacing
-      Eigen::Vector2d l = R_.transpose() * moved.head<2>() / h_;
-      l -= l.array().round().matrix();
-      other_phases_ = other_phases_ || std::hypot(h_ * l.norm(), moved.z()) >= 0.25 * h_;
-    }
-    spread_at_[spread_next_] = spread;
-    phase_at_[spread_next_] = phase_;
-    spread_next_ = (spread_next_ + 1) % kSpreadWindow;
-    spread_count_ = std::min(spread_count_ + 1, kSpreadWindow);
-    dense_run_ = dense ? std::min(dense_run_ + 1, kSpreadWindow) : 0;
+    const Eigen::Vector3d moved = phase_ - phase_at_[i];
+    const double travelled = moved.norm();
+    const int age = (spread_next_ - 1 - i + kSpreadWindow) % kSpreadWindow;  // 0: the last update's
+    if (travelled >= window && age >= kRecentUpdates)
+      continue;  // the patch has moved on
+    window_spread_ = std::max(window_spread_, spread_at_[i]);
+    if (!dense || age >= dense_run_ || travelled >= h_)
+      continue;
+    // the lattice repeats every spacing along its axes: the phase is the displacement modulo a spacing
+    Eigen::Vector2d l = R_.transpose() * moved.head<2>() / h_;
+    l -= l.array().round().matrix();
+    other_phases_ = other_phases_ || std::hypot(h_ * l.norm(), moved.z()) >= 0.25 * h_;
   }
+  spread_at_[spread_next_] = spread;
+  phase_at_[spread_next_] = phase_;
+  spread_next_ = (spread_next_ + 1) % kSpreadWindow;
+  spread_count_ = std::min(spread_count_ + 1, kSpreadWindow);
+  dense_run_ = dense ? std::min(dense_run_ + 1, kSpreadWindow) : 0;
   f.F_x = g.F_x;
   f.F_y = g.F_y;
   f.M_z = g.M_z;
