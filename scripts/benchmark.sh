@@ -34,14 +34,14 @@ log "auto along the demo bag against the transient model at resolution 256 (abou
 log "the recorded manoeuvre at 100 Hz (data/manoeuvre.bag) and 1 kHz (recorded now): every message against a converged reference (about 3 minutes)"
 record_scenario "$REPO/config/manoeuvre_scenario.yaml" 1000 manoeuvre_1khz
 /usr/bin/python3 "$REPO/scripts/stream_benchmark.py" --bag-analyze "$BIN/bag_analyze" --params "$REPO/config/contact_estimator.yaml" \
-  --scenario "$REPO/config/manoeuvre_scenario.yaml" --reference-resolution 128 \
+  --scenario "$REPO/config/manoeuvre_scenario.yaml" --reference-resolution 128 --confirm-resolution 256 \
   --bags "$REPO/data/manoeuvre.bag" "$OUT/manoeuvre_1khz.bag" --out "$OUT/streams.json"
 log "a hostile stream (config/hostile_scenario.yaml: nearly every bristle sliding) at 100 and 30 Hz: does the work budget keep a message within 1 ms"
 for rate in 100 30; do
   record_scenario "$REPO/config/hostile_scenario.yaml" "$rate" "hostile_$rate"
 done
 /usr/bin/python3 "$REPO/scripts/stream_benchmark.py" --bag-analyze "$BIN/bag_analyze" --params "$REPO/config/contact_estimator.yaml" \
-  --scenario "$REPO/config/hostile_scenario.yaml" --reference-resolution 128 \
+  --scenario "$REPO/config/hostile_scenario.yaml" --reference-resolution 128 --confirm-resolution 256 \
   --bags "$OUT/hostile_100.bag" "$OUT/hostile_30.bag" --out "$OUT/hostile.json"
 log "random robots on random manoeuvres (scripts/stream_sweep.py, 24 seeded streams; about 12 minutes)"
 /usr/bin/python3 "$REPO/scripts/stream_sweep.py" --bag-analyze "$BIN/bag_analyze" --dir "$OUT/sweep" --streams 24 \

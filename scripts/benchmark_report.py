@@ -723,7 +723,7 @@ def hostile_section(hostile):
              " resolved by the reference).", "",
              "| bag | messages | time p50 | p99 | max | work max | ns per unit: median, max (heavy messages) | models"
              " (messages) | flagged | unflagged over target | estimate below the error: beyond the difference, beyond"
-             " the reference's estimate |",
+             " the reference's estimate, of those between against resolution 256 |",
              "|---|---|---|---|---|---|---|---|---|---|---|"]
     for s in hostile.get("streams", []):
         a = s["all"]
@@ -733,7 +733,8 @@ def hostile_section(hostile):
         lines.append("| %s | %d | %s | %s | %s | %.0f | %s | %s | %s | %d | %s |" % (
             s["bag"], s["messages"], fmt_us(t["p50"]), fmt_us(t["p99"]), fmt_us(t["max"]), a["work"]["max"], per_unit,
             models, fmt_share(a["flagged"], a["messages"]), a["unflagged_over_target"],
-            "%s, %s" % (a.get("estimate_short", "–"), a.get("estimate_short_resolved", "–"))))
+            "%s, %s, %s" % (a.get("estimate_short", "–"), a.get("estimate_short_resolved", "–"),
+                            a.get("estimate_short_confirmed_finer", "–"))))
     lines.append("")
     return lines
 
