@@ -488,6 +488,29 @@ TEST(BrushTransient, ErrorEstimateCoversNoisyHistoriesAtRandomPoints)
   }
 }
 
+// How far estimates cover their errors against a finer reference: the error beyond the reference's own estimate over
+// the estimate, its largest and how many pass 1.
+struct Coverage
+{
+  int checked = 0, short_count = 0;
+  double worst = 0.0;
+
+  void add(const BrushForces& coarse, const BrushForces& fine, const BrushParameters& p)
+  {
+    const double ratio = (forceDistance(coarse, fine, p) - fine.error_estimate) / (coarse.error_estimate + 1e-300);
+    ++checked;
+    short_count += ratio > 1.0;
+    worst = std::max(worst, ratio);
+  }
+  // printed and recorded as the test's worst_error_over_estimate
+  void report(const char* what) const
+  {
+    std::printf("%s: error beyond the reference's estimate / estimate at most %.2f, short at %d of %d messages\n", what,
+                worst, short_count, checked);
+    ::testing::Test::RecordProperty("worst_error_over_estimate", std::to_string(worst));
+  }
+};
+
 TEST(BrushTransient, EstimateCoversTheDefaultRobotsNoisyHistories)
 {
   // The default robot's parameters (config/contact_estimator.yaml: a = 1 cm, 5 kg on mu = 0.8, k = 2e8 N/m^3, the
@@ -499,8 +522,7 @@ TEST(BrushTransient, EstimateCoversTheDefaultRobotsNoisyHistories)
   // 1.2x, where an update's four sub-lattices happen to agree: the tail grows with the sample, so this sample must stay
   // clear of it (with three times the spread: 0.61 here, 0.75 over the 13 200).
   std::mt19937_64 rng(404);
-  int checked = 0, short_count = 0;
-  double worst = 0.0;
+  Coverage coverage;
   for (int h = 0; h < 150; ++h)
   {
     BrushParameters p = test::drawEnvelopeParameters(rng, 0);  // (its draws, then the robot's values)
@@ -511,18 +533,12 @@ TEST(BrushTransient, EstimateCoversTheDefaultRobotsNoisyHistories)
     BrushParameters fine = p;
     p.resolution = 32;
     fine.resolution = 256;
-    compareAlongNoisyHistory(rng, p, fine, [&](const BrushForces& c, const BrushForces& f) {
-      const double ratio = (forceDistance(c, f, p) - f.error_estimate) / (c.error_estimate + 1e-300);
-      ++checked;
-      short_count += ratio > 1.0;
-      worst = std::max(worst, ratio);
-    });
+    compareAlongNoisyHistory(rng, p, fine,
+                             [&](const BrushForces& c, const BrushForces& f) { coverage.add(c, f, p); });
   }
-  std::printf("the default robot at resolution 32: error beyond the reference's estimate / estimate at most %.2f, "
-              "short at %d of %d messages\n", worst, short_count, checked);
-  RecordProperty("worst_error_over_estimate", std::to_string(worst));
-  EXPECT_EQ(short_count, 0) << "worst " << worst;
-  EXPECT_LE(worst, 0.8);
+  coverage.report("the default robot at resolution 32");
+  EXPECT_EQ(coverage.short_count, 0) << "worst " << coverage.worst;
+  EXPECT_LE(coverage.worst, 0.8);
 }
 
 // The elastic energy of the bristles, sum of k |u|^2 / 2 over the lattice cells [J].
@@ -691,12 +707,6 @@ struct NoisyRoll
   int messages;
 };
 
-struct Coverage
-{
-  int checked = 0, short_count = 0;
-  double worst = 0.0;  // error beyond the reference's estimate over the estimate
-};
-
 void coverAlongNoisyRoll(std::mt19937_64& rng, const NoisyRoll& r, Coverage& c)
 {
   std::normal_distribution<double> g(0.0, 1.0);
@@ -715,10 +725,7 @@ void coverAlongNoisyRoll(std::mt19937_64& rng, const NoisyRoll& r, Coverage& c)
     travel += step;
     if (travel < 2.0 * r.p.a)
       continue;
-    const double ratio = (forceDistance(f, ref, coarse_p) - ref.error_estimate) / (f.error_estimate + 1e-300);
-    ++c.checked;
-    c.short_count += ratio > 1.0;
-    c.worst = std::max(c.worst, ratio);
+    c.add(f, ref, coarse_p);
   }
 }
 
@@ -753,9 +760,7 @@ TEST(BrushTransient, EstimateCoversNoisySkidsThatRollAboutASpacingAMessage)
     const double noise = 0.03 + 0.01 * u(rng), spacings = 0.95 + 0.1 * u(rng);
     coverAlongNoisyRoll(rng, { p, sigma, noise, 0.02 * noise, spacings, 0 }, c);
   }
-  std::printf("noisy skids at about a spacing a message: error beyond the reference's estimate / estimate at most %.2f, "
-              "short at %d of %d messages\n", c.worst, c.short_count, c.checked);
-  RecordProperty("worst_error_over_estimate", std::to_string(c.worst));
+  c.report("noisy skids at about a spacing a message");
   EXPECT_GT(c.checked, 1000);
   EXPECT_EQ(c.short_count, 0) << "worst " << c.worst;
 }
@@ -778,9 +783,7 @@ TEST(BrushTransient, EstimateCoversNoisyRollsOfTensOfSpacingsAMessage)
     const Eigen::Vector2d sigma(-0.05 - 0.01 * u(rng), 0.0);
     coverAlongNoisyRoll(rng, { p, sigma, 0.005, 0.02, 18.0 + 8.0 * u(rng), 40 }, c);
   }
-  std::printf("noisy rolls of tens of spacings a message: error beyond the reference's estimate / estimate at most "
-              "%.2f, short at %d of %d messages\n", c.worst, c.short_count, c.checked);
-  RecordProperty("worst_error_over_estimate", std::to_string(c.worst));
+  c.report("noisy rolls of tens of spacings a message");
   EXPECT_GT(c.checked, 1000);
   EXPECT_EQ(c.short_count, 0) << "worst " << c.worst;
 }
