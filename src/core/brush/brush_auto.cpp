@@ -84,13 +84,14 @@ void BrushAuto::reset()
   lag_->reset();
   have_check_ = false;
   lag_travel_ = 0.0;
+  check_work_ = 0;
   have_rolling_ = false;
   offset_ = BrushForces{};
   answered_ = false;
 }
 
-void BrushAuto::stepLag(const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame, double target,
-                        bool steady_exists, double travel)
+bool BrushAuto::stepLag(const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame, double target,
+                        bool steady_exists, double travel, long max_work)
 {
   // The linear forces where they are within a quarter of the target of the steady ones, split into what the
   // slips and what the spin drive (SteadyLag weighs each by its own memory; for adhesion the lag is then
@@ -107,7 +108,7 @@ void BrushAuto::stepLag(const Slips& s, const Eigen::Vector2d& sigma, const Roll
     return Eigen::Vector3d(f.F_x, f.F_y, M_z / p_.a);
   };
   Eigen::Vector3d slip, spin = Eigen::Vector3d::Zero();
-  bool split = false;
+  bool split = false, ran_out = false;
   const double limit = p_.mu * p_.F_z;
   // which drive made the change since the last step, in the linear theory's forces
   const Eigen::Vector2d d_sigma = sigma - last_lag_sigma_;
@@ -130,12 +131,12 @@ void BrushAuto::stepLag(const Slips& s, const Eigen::Vector2d& sigma, const Roll
   else
   {
     BrushSteady::Stats stats;
-    // (at most half of what is left: the answer's model needs the rest)
-    steady_cache_ = steady_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi, 0.25 * target, &stats,
-                                     std::min(BrushSteady::kMaxWork, remaining() / 2));
+    steady_cache_ = steady_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi, 0.25 * target, &stats, max_work);
     spent_ += stats.work;
     cost_ += kSteadyPathCost * stats.paths;
     steady_cached_ = true;
+    ran_out = (steady_cache_.flags & brush_flags::kAccuracyNotMet) != 0;
+    check_work_ = ran_out ? 2 * std::max(stats.work, 1L) : stats.work;
     slip = toPatch(steady_cache_.F_x, steady_cache_.F_y, steady_cache_.M_z);
   }
   // Under eq. (4b) a sliding bristle's direction carries memory too (it turns towards the drive no faster than its tip
@@ -143,6 +144,7 @@ void BrushAuto::stepLag(const Slips& s, const Eigen::Vector2d& sigma, const Roll
   // (measured on random histories: the slips' kernel fell 20 % short on a ramp with tilt)
   const double share = p_.sliding_law == SlidingLaw::Coulomb && !split ? 1.0 : spin_share;
   lag_->step(slip, spin, split, share, travel, linear_bound_);
+  return !ran_out;
 }
 
 BrushForces BrushAuto::steadyFamily(const Slips& s, const Eigen::Vector2d& sigma, double budget, BrushModelKind& model)
@@ -243,7 +245,7 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
   const RollingFrame frame(s.defined ? s.epsilon : Eigen::Vector2d(0.0, 1.0));
   const Eigen::Vector2d sigma = s.defined ? frame.toRolling(s.sigma) : Eigen::Vector2d::Zero();
 
-  const SteadyCheck check = checkSteady(s, sigma, frame, dt, target);
+  const SteadyCheck check = checkSteady(kin, s, sigma, frame, dt, target);
   chooseFamily(kin, s, dt, check);
   BrushForces out;
   BrushModelKind model;
@@ -274,8 +276,9 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
   return out;
 }
 
-BrushAuto::SteadyCheck BrushAuto::checkSteady(const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame,
-                                              double dt, double target)
+BrushAuto::SteadyCheck BrushAuto::checkSteady(const ContactKinematics& kin, const Slips& s,
+                                              const Eigen::Vector2d& sigma, const RollingFrame& frame, double dt,
+                                              double target)
 {
   // Conditions under which a steady state describes the contact, and the lag of that state.
   steady_cached_ = false;
@@ -300,7 +303,18 @@ BrushAuto::SteadyCheck BrushAuto::checkSteady(const Slips& s, const Eigen::Vecto
   // (scripts/stream_sweep.py seed 1062 at 1 kHz: a linear answer's error 1.2 times its estimate, beyond the reference's
   // own estimate, two messages after leaving).
   const double stride = have_check_ && last_check_.lag > kFarLag * kLeavingLag * target ? kFarLagStride : kLagStride;
-  if (in_transient_ && have_check_ && !last_check_.steady && !c.renewed && lag_travel_ + s.V_r * dt < stride * p_.a)
+  // (at most half of what is left: the answer's model needs the rest; in the transient model, what its lattices'
+  // predicted steps leave, where that is less: check_work_)
+  long check_room = std::min(BrushSteady::kMaxWork, remaining() / 2);
+  const bool evaluates = c.steady && linear_bound_ > 0.25 * target;  // stepLag's steady evaluation
+  if (in_transient_ && evaluates && !c.renewed)
+  {
+    const long lattices = transient_->predictWork(kin, dt) + (finer_ ? finer_->predictWork(kin, dt) : 0);
+    check_room = std::min(check_room, remaining() - lattices);
+  }
+  const bool waits = in_transient_ && have_check_ && evaluates && !c.renewed && check_work_ > check_room;
+  if (in_transient_ && have_check_ && !c.renewed &&
+      (waits || (!last_check_.steady && lag_travel_ + s.V_r * dt < stride * p_.a)))
   {
     lag_travel_ += s.V_r * dt;
     c.lag = last_check_.lag;
@@ -320,10 +334,10 @@ BrushAuto::SteadyCheck BrushAuto::checkSteady(const Slips& s, const Eigen::Vecto
   const double a_phi_gamma = std::abs(s.phi_gamma) * p_.a;
   if (p_.tilt && a_phi_gamma > 0.0)
     stretch = a_phi_gamma < 1.0 ? std::asin(a_phi_gamma) / a_phi_gamma : 0.5 * boost::math::double_constants::pi;
-  stepLag(s, sigma, frame, target, c.steady, travel / stretch);
+  const bool evaluated = stepLag(s, sigma, frame, target, c.steady, travel / stretch, std::max(check_room, 1L));
   c.lag = limit > 0.0 ? lag_->lag() / limit : 0.0;
-  if (!(c.lag <= kLeavingLag * target))
-    c.steady = false;
+  if (!(c.lag <= kLeavingLag * target) || (in_transient_ && !evaluated))
+    c.steady = false;  // (a check that ran out of its room in the transient model gives no verdict: it stays)
   last_check_ = c;
   have_check_ = true;
   return c;
