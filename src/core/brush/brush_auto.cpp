@@ -75,6 +75,7 @@ void BrushAuto::reset()
     transient_->setParameters(withResolution(p_, transient_resolution_));
   }
   pending_resolution_ = 0;
+  budget_cut_ = 0;
   easy_travel_ = 0.0;
   transient_->reset();
   finer_.reset();
@@ -193,6 +194,7 @@ void BrushAuto::enterTransient(const ContactKinematics& kin, double dt)
   const double warm = have_rolling_ ? 2.5 * longestPath(p_) / V : 0.0;
   if (resolution != transient_resolution_)
     transient_->setParameters(withResolution(p_, resolution));
+  const int wanted = resolution;
   // the cost of a lattice grows as its resolution cubed (points times substeps)
   while (resolution / 2 >= BrushTransient::kMinCoarsened &&
          (have_rolling_ ? transient_->predictWork(last_rolling_, warm) : 0) + transient_->predictWork(kin, dt) > remaining())
@@ -201,6 +203,7 @@ void BrushAuto::enterTransient(const ContactKinematics& kin, double dt)
     transient_->setParameters(withResolution(p_, resolution));  // rare: it allocates
   }
   transient_resolution_ = resolution;
+  budget_cut_ = resolution < wanted ? wanted : 0;
   transient_->reset();
   easy_travel_ = 0.0;
   in_transient_ = true;
@@ -413,6 +416,7 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
   // a lattice whose step does not fit what is left of the budget: every other bristle, until it does
   while (transient_->predictWork(kin, dt) > remaining() && transient_->coarsen())
   {
+    budget_cut_ = std::max(budget_cut_, transient_resolution_);
     transient_resolution_ /= 2;
     finer_.reset();
     easy_travel_ = 0.0;
@@ -445,16 +449,28 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
       out.error_estimate += entry;
       transient_ = std::move(finer_);
       transient_resolution_ = resolution = 2 * resolution;
+      if (transient_resolution_ >= budget_cut_)
+        budget_cut_ = 0;  // back where the budget took it from
     }
   }
   else if ((out.error_estimate > target || pending_resolution_ > transient_resolution_) &&
            transient_resolution_ < kMaxTransientResolution)
   {
     const int finer = std::min(2 * transient_resolution_, kMaxTransientResolution);
-    // A lattice twice as fine costs about eight times as much a step (points times substeps), which must fit what is
-    // left of the budget. It needs no warm start: it starts empty and answers only once it has rolled the longest
-    // path, when every bristle on it entered under the inputs it followed.
-    const bool affordable = 8 * transient_->predictWork(kin, dt) <= remaining();
+    // A lattice twice as fine must fit what is left of the budget. It needs no warm start: it starts empty and answers
+    // only once it has rolled the longest path, when every bristle on it entered under the inputs it followed. Back up
+    // to where the budget coarsened the lattice from (budget_cut_), what it is predicted to cost (predictFinerWork:
+    // without tilt four to five times this one's step); else eight times this one's step, a reserve kept from the
+    // substeps' lattice (points times substeps): a lattice its own estimate coarsened (an eighth of the target) comes
+    // back only with room to spare, as before, since its estimate may be as far below the finer one's as that (a
+    // random robot of the sweep, seed 1253, rolling at 1.5 m/s: 0.035 at 16 against 0.0045 at 32, a target of 0.04;
+    // at four to five times it went back and forth between 16 and 32 every few messages). With eight times after a
+    // budget cut too, that robot, coarsened to 16 by a weave it could not afford at 32, stayed at 16 through the slow
+    // weave and the roll after it (2.6 s), flagged at nearly every message with estimates up to ten times the target,
+    // while 32 needed about a third of the budget there (docs/speed_and_accuracy.md).
+    const long cost =
+        finer <= budget_cut_ ? transient_->predictFinerWork(kin, dt) : 8 * transient_->predictWork(kin, dt);
+    const bool affordable = cost <= remaining();
     if (s.defined && affordable)
     {
       finer_ = std::make_unique<BrushTransient>(withResolution(p_, finer));  // rare: it allocates
@@ -472,6 +488,7 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
     {
       transient_resolution_ /= 2;
       easy_travel_ = 0.0;
+      budget_cut_ = 0;  // its own choice now
     }
   }
   else

@@ -371,6 +371,18 @@ long BrushTransient::predictWork(const ContactKinematics& kin, double dt) const
   return static_cast<long>(n < 0 ? kMaxSubsteps : n) * kPointWork * w_ * w_ + sumsWork();
 }
 
+long BrushTransient::predictFinerWork(const ContactKinematics& kin, double dt) const
+{
+  if (!p_.tilt && stepping_ == TransientStepping::WholeStep)
+  {
+    const double travel = std::min(kin.V_r.norm() * std::max(dt, 0.0), 2.0 * p_.a);
+    const double steps = kFinerSteps * last_steps_ / std::max(last_travel_, h_) * travel;
+    const long w = 2L * w_;  // (the finer window is 2 n + 6 points wide: a little less)
+    return w * w * (kBristleWork + kSumWork) + static_cast<long>(steps) * kStepWork;
+  }
+  return 8 * predictWork(kin, dt);
+}
+
 bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
 {
   // The roots move at -V_r (eq. 31 without tilt): the lattice's pose moves by -V_r dt, and the window is recentred on

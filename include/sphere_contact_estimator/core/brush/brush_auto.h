@@ -143,6 +143,9 @@ private:
   int transient_resolution_ = 16;
   int configured_resolution_ = 16;  // what reset() restores
   int pending_resolution_ = 0;  // asked for by a missed target, applied at the next entry
+  // The resolution the work budget coarsened the lattice from (0: none since the lattice last chose its own): up to it,
+  // a missed target refines at what the finer lattice is predicted to cost (BrushTransient::predictFinerWork)
+  int budget_cut_ = 0;
   double easy_travel_ = 0.0;    // rolled with the transient estimate below an eighth of the target
   long spent_ = 0;              // work of the update under way
   bool in_transient_ = false;
