@@ -315,7 +315,10 @@ BrushAuto::SteadyCheck BrushAuto::checkSteady(const ContactKinematics& kin, cons
     const long lattices = transient_->predictWork(kin, dt) + (finer_ ? finer_->predictWork(kin, dt) : 0);
     check_room = std::min(check_room, remaining() - lattices);
   }
-  const bool waits = in_transient_ && have_check_ && evaluates && !c.renewed && check_work_ > check_room;
+  // (for a transit at most: a check that ran out of half of what was left would otherwise wait for good, and leaving
+  // with it)
+  const bool waits = in_transient_ && have_check_ && evaluates && !c.renewed && check_work_ > check_room &&
+                     lag_travel_ + s.V_r * dt < kFarLagStride * p_.a;
   if (in_transient_ && have_check_ && !c.renewed &&
       (waits || (!last_check_.steady && lag_travel_ + s.V_r * dt < stride * p_.a)))
   {

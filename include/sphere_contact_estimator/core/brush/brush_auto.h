@@ -99,13 +99,13 @@ private:
   SteadyCheck last_check_;   // the last evaluated check, and the travel since (in the transient model)
   bool have_check_ = false;
   double lag_travel_ = 0.0;
-  // In the transient model the lattice's step answers and a check only decides when to leave it: a check waits while
-  // its steady evaluation (the last one's work, or twice the room of one that ran out of it) and the lattice's
-  // predicted step do not both fit what is left of the budget, and then gets only what the step leaves. Before, the
-  // check took up to half of what was left and a lattice whose step no longer fitted was coarsened for good: at a 0.1 %
-  // target on data/manoeuvre.bag one 36 k-unit check at the pivot halved the lattice twice (32 to 8), and at 16 (a
-  // finer one needs eight times its step) it stayed through the pivot, the skid and the spin in place: their largest
-  // errors, and the park's after them, 4-9x those at the default 1 % target (docs/speed_and_accuracy.md).
+  // In the transient model the lattice's step answers and a check only decides when to leave it: a check waits, for a
+  // transit at most, while its steady evaluation (the last one's work, or twice the room of one that ran out of it) and
+  // the lattice's predicted step do not both fit what is left of the budget, and gets only what the step leaves.
+  // Before, the check took up to half of what was left and a lattice whose step no longer fitted was coarsened for
+  // good: at a 0.1 % target on data/manoeuvre.bag one 36 k-unit check at the pivot halved the lattice twice (32 to 8),
+  // and at 16 (a finer one needs eight times its step) it stayed through the pivot, the skid and the spin in place:
+  // their largest errors, and the park's after them, 4-9x those at the default 1 % target (docs/speed_and_accuracy.md).
   long check_work_ = 0;
   // The lag that leaving the transient model allows, a share of the target: the steady family then has the rest
   static constexpr double kLeavingLag = 0.5;
