@@ -551,6 +551,24 @@ TEST(BrushAuto, TheLagOnLeavingTheTransientModelHoldsTheNoiseBetweenChecks)
                             << short_histories << " of the histories";
 }
 
+// One message of noisy odometry at 100 Hz (velocity_noise [m/s] on the speed and, over it, on the slips; 0.02 rad/s on
+// the spin rate) through `model` within `budget`: its work within the budget, its estimate finite and flagged exactly
+// where it is above the target. (noise: a standard normal kept across messages, as it draws its values in pairs)
+BrushForces noisyMessage(BrushAuto& model, std::mt19937_64& rng, std::normal_distribution<double>& noise, long budget,
+                         double velocity_noise, double V, const Eigen::Vector2d& sigma, double spin_rate)
+{
+  const double v = V + velocity_noise * noise(rng);
+  model.setWorkBudget(budget);
+  const BrushForces f = model.update(ContactKinematics::fromSlips({ sigma.x() + velocity_noise * noise(rng) / v,
+                                                                    sigma.y() + velocity_noise * noise(rng) / v },
+                                                                  (spin_rate + 0.02 * noise(rng)) / v, 1.0, v),
+                                     0.01);
+  EXPECT_LE(f.work, budget + BrushModel::kWorkGranularity);
+  EXPECT_TRUE(std::isfinite(f.error_estimate));
+  EXPECT_EQ(f.error_estimate > model.lastTarget(), (f.flags & brush_flags::kAccuracyNotMet) != 0);
+  return f;
+}
+
 TEST(BrushAuto, ALagCheckNeverCoarsensALatticeWhoseStepFits)
 {
   // The default robot (config/contact_estimator.yaml: a = 1 cm, 5 kg, mu 0.8, k = 2e8 N/m^3, resolution 32, a budget of
@@ -567,18 +585,11 @@ TEST(BrushAuto, ALagCheckNeverCoarsensALatticeWhoseStepFits)
   BrushAuto model(p);
   std::mt19937_64 rng(3);
   std::normal_distribution<double> noise(0.0, 1.0);
-  const double V = 0.3, dt = 0.01, budget = 90000;
   int transient = 0, lowest = p.resolution;
   for (int i = 0; i < 200; ++i)
   {
-    const double v = V + 0.005 * noise(rng);
-    const ContactKinematics k = ContactKinematics::fromSlips(
-        { 0.005 * noise(rng) / v, 0.08 + 0.005 * noise(rng) / v }, (12.0 + 0.02 * noise(rng)) / v, 1.0, v);
-    model.setWorkBudget(static_cast<long>(budget));
-    const BrushForces f = model.update(k, dt);
-    EXPECT_LE(f.work, budget + BrushModel::kWorkGranularity) << "message " << i;
+    const BrushForces f = noisyMessage(model, rng, noise, 90000, 0.005, 0.3, { 0.0, 0.08 }, 12.0);
     ASSERT_TRUE(std::isfinite(f.error_estimate)) << "message " << i;
-    EXPECT_EQ(f.error_estimate > model.lastTarget(), (f.flags & brush_flags::kAccuracyNotMet) != 0) << "message " << i;
     if (model.lastModel() == BrushModelKind::Transient)
     {
       ++transient;
@@ -604,17 +615,8 @@ TEST(BrushAuto, ALatticeTheBudgetCoarsenedComesBackOnceItFitsAgain)
   BrushAuto model(p);
   std::mt19937_64 rng(1253);
   std::normal_distribution<double> noise(0.0, 1.0);
-  const double dt = 0.01;
-  const long budget = 81000;
   const auto message = [&](double V, double sigma_x, double sigma_y, double spin_rate) {
-    const double v = V + 0.01 * noise(rng);
-    model.setWorkBudget(budget);
-    const BrushForces f = model.update(ContactKinematics::fromSlips({ sigma_x + 0.01 * noise(rng) / v,
-                                                                      sigma_y + 0.01 * noise(rng) / v },
-                                                                    (spin_rate + 0.02 * noise(rng)) / v, 1.0, v),
-                                       dt);
-    EXPECT_LE(f.work, budget + BrushModel::kWorkGranularity);
-    return f;
+    return noisyMessage(model, rng, noise, 81000, 0.01, V, { sigma_x, sigma_y }, spin_rate);
   };
   for (int i = 0; i < 150; ++i)
     message(1.0, 0.0, -0.1, -15.6);

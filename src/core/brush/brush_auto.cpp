@@ -117,7 +117,7 @@ bool BrushAuto::stepLag(const Slips& s, const Eigen::Vector2d& sigma, const Roll
   const double spin_share = d_slip + d_spin > 0.0 ? d_spin / (d_slip + d_spin) : 1.0;
   last_lag_sigma_ = sigma;
   last_lag_phi_ = s.phi;
-  if (!steady_exists || linear_bound_ <= 0.25 * target)
+  if (!lagNeedsSteady(steady_exists, target))
   {
     // eqs. 61-62 by drive, scaled back together onto the friction circle like BrushLinear (then not split)
     const Eigen::Vector2d F_slip = linear_.C_sigma() * sigma;
@@ -309,18 +309,18 @@ BrushAuto::SteadyCheck BrushAuto::checkSteady(const ContactKinematics& kin, cons
   // (at most half of what is left: the answer's model needs the rest; in the transient model, what its lattices'
   // predicted steps leave, where that is less: check_work_)
   long check_room = std::min(BrushSteady::kMaxWork, remaining() / 2);
-  const bool evaluates = c.steady && linear_bound_ > 0.25 * target;  // stepLag's steady evaluation
+  const bool evaluates = lagNeedsSteady(c.steady, target);
   if (in_transient_ && evaluates && !c.renewed)
   {
     const long lattices = transient_->predictWork(kin, dt) + (finer_ ? finer_->predictWork(kin, dt) : 0);
     check_room = std::min(check_room, remaining() - lattices);
   }
-  // (for a transit at most: a check that ran out of half of what was left would otherwise wait for good, and leaving
-  // with it)
-  const bool waits = in_transient_ && have_check_ && evaluates && !c.renewed && check_work_ > check_room &&
-                     lag_travel_ + s.V_r * dt < kFarLagStride * p_.a;
-  if (in_transient_ && have_check_ && !c.renewed &&
-      (waits || (!last_check_.steady && lag_travel_ + s.V_r * dt < stride * p_.a)))
+  const double since = lag_travel_ + s.V_r * dt;
+  // (waiting for room for a transit at most: a check that ran out of half of what was left would otherwise wait for
+  // good, and leaving with it)
+  const bool no_room = evaluates && check_work_ > check_room && since < kFarLagStride * p_.a;
+  const bool within_stride = !last_check_.steady && since < stride * p_.a;
+  if (in_transient_ && have_check_ && !c.renewed && (no_room || within_stride))
   {
     lag_travel_ += s.V_r * dt;
     c.lag = last_check_.lag;

@@ -361,11 +361,9 @@ long BrushTransient::predictWork(const ContactKinematics& kin, double dt) const
 {
   if (!p_.tilt && stepping_ == TransientStepping::WholeStep)
   {
-    // the closed forms of every bristle, the sums, and as many sliding steps per travel as the last update took (a
-    // bristle's steps end with its path: no more than a transit's)
-    const double travel = std::min(kin.V_r.norm() * std::max(dt, 0.0), 2.0 * p_.a);
-    const double steps = last_steps_ / std::max(last_travel_, h_) * travel;
-    return static_cast<long>(w_) * w_ * kBristleWork + sumsWork() + static_cast<long>(steps) * kStepWork;
+    // the closed forms of every bristle, the sums, and the sliding steps
+    return static_cast<long>(w_) * w_ * kBristleWork + sumsWork() +
+           static_cast<long>(predictSteps(kin, dt)) * kStepWork;
   }
   const int n = dt > 0.0 ? substeps(kin, dt) : 0;
   return static_cast<long>(n < 0 ? kMaxSubsteps : n) * kPointWork * w_ * w_ + sumsWork();
@@ -375,10 +373,8 @@ long BrushTransient::predictFinerWork(const ContactKinematics& kin, double dt) c
 {
   if (!p_.tilt && stepping_ == TransientStepping::WholeStep)
   {
-    const double travel = std::min(kin.V_r.norm() * std::max(dt, 0.0), 2.0 * p_.a);
-    const double steps = kFinerSteps * last_steps_ / std::max(last_travel_, h_) * travel;
     const long w = 2L * w_;  // (the finer window is 2 n + 6 points wide: a little less)
-    return w * w * (kBristleWork + kSumWork) + static_cast<long>(steps) * kStepWork;
+    return w * w * (kBristleWork + kSumWork) + static_cast<long>(kFinerSteps * predictSteps(kin, dt)) * kStepWork;
   }
   return 8 * predictWork(kin, dt);
 }

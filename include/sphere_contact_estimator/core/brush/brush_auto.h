@@ -122,6 +122,12 @@ private:
   void carryAcrossSwitches(BrushForces& out, const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame,
                            double dt, BrushModelKind before, int before_resolution, BrushModelKind model, int resolution);
   BrushForces steadyFamily(const Slips& s, const Eigen::Vector2d& sigma, double budget, BrushModelKind& model);
+  // whether stepLag evaluates the steady model (else the linear forces): where one exists and the linear bound is above
+  // a quarter of the target
+  bool lagNeedsSteady(bool steady_exists, double target) const
+  {
+    return steady_exists && !(linear_bound_ <= 0.25 * target);
+  }
   // the lag one step on; max_work: what its steady evaluation may take. False where that evaluation ran out of it.
   bool stepLag(const Slips& s, const Eigen::Vector2d& sigma, const RollingFrame& frame, double target,
                bool steady_exists, double travel, long max_work);

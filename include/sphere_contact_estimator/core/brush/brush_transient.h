@@ -194,6 +194,13 @@ private:
   // work budget cut the sliding steps short
   bool advanceWhole(const ContactKinematics& kin, double dt);
   double timeTolerance() const;  // eq. (4b)'s steps: what each one's error may reach [m]
+  // without tilt: as many sliding steps per travel as the last update took, over this one's travel (a bristle's steps
+  // end with its path: no more than a transit's)
+  double predictSteps(const ContactKinematics& kin, double dt) const
+  {
+    const double travel = std::min(kin.V_r.norm() * std::max(dt, 0.0), 2.0 * p_.a);
+    return last_steps_ / std::max(last_travel_, h_) * travel;
+  }
   long last_steps_ = 0;          // the sliding steps of the last whole-step update, and its travel (predictWork)
   double last_travel_ = 0.0;
   void substep(const ContactKinematics& kin, double dt);
