@@ -75,8 +75,14 @@ public:
   }
 
 private:
-  struct Piece;  // a stretch of the path from its start: position, deflection, t's coefficients
+  // A stretch of a path from its start x_s (tau = 0): t(tau) = 1 - |x_s - V_r tau|^2 / a^2 = t0 + t1 tau + t2 tau^2.
+  struct Piece
+  {
+    Eigen::Vector2d x, u;
+    double t0, t1, t2;
+  };
   struct Along;  // the same for a sliding piece: position and drive at its start
+  class CoulombSlide;  // eq. (4b)'s steps along one sliding piece (coulomb_slide.cpp)
   struct Quadratic;  // t along a path (tAlong)
   struct Point   // what eq. (4b) needs at a time along a sliding piece
   {
@@ -110,7 +116,8 @@ private:
   // the first time in (0, span] where an adhering bristle reaches the bound (span + 1 if it does not); u and t at it
   double onset(const Piece& piece, double span, bool at_rim) const;
   double rigidReAdhesion(const Piece& piece, double span) const;
-  // eq. (4b)'s sliding from the piece's start over span: returns when it ended (re-adhered: < span) and the steps
+  // eq. (4b)'s sliding from the piece's start over span (CoulombSlide, coulomb_slide.cpp): returns when it ended
+  // (re-adhered: < span) and the steps
   double coulombSlide(BristleState& s, const Eigen::Vector2d& x_start, double span, int& steps, int max_steps) const;
   double coulombSlideStill(BristleState& s, const Eigen::Vector2d& x, double span) const;
   // t = 1 - r^2 / a^2 along the path from x (r = |x - V_r tau|): t0 + t1 tau + t2 tau^2
