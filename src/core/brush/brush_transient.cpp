@@ -746,28 +746,18 @@ BrushForces BrushTransient::forces() const
   return f;
 }
 
-BrushForces BrushTransient::sums(double& fixed, double& spread) const
+void BrushTransient::gather(LatticeSums& g) const
 {
-  fixed = spread = 0.0;
-  // The lattice sum, and the same over each of the four sub-lattices of twice the spacing (the parities of
-  // the lattice indices): how far those move from the full sum bounds the error. An error C h^p with p >= 1
-  // makes the difference (2^p - 1) C h^p, at least the error itself; kSpreadFactor times it covers the irregular
-  // part that the cells cut by the patch edge and by the onsets add (measured over noisy histories at random points,
-  // test_brush_transient: without a factor the estimate fell short at 0.2-0.5 % of them, by up to 2.7x).
-  BrushForces f;
-  // by lattice (0: the full one, 1-4: the sub-lattices), the cells that differ between them (near the edge or an onset);
-  // the plain cells, the same on both, by sub-lattice only (the full lattice's are their sum)
-  Eigen::Vector2d F[5], F_plain[5];
-  double M_z[5] = {}, load[5] = {}, M_z_plain[5] = {}, load_plain[5] = {};
-  double step_error = 0.0;  // eq. (4b): the sum of the bristles' time-step errors, each over its cell
-  int count[5] = {}, count_plain[5] = {};
+  // the cells that differ between the lattice and its sub-lattices (near the edge or an onset) by lattice, into g; the
+  // plain cells, the same on both, by sub-lattice only (the full lattice's are their sum)
+  Eigen::Vector2d F_plain[5];
+  double M_z_plain[5] = {}, load_plain[5] = {};
+  int count_plain[5] = {};
   for (int k = 0; k < 5; ++k)
   {
-    F[k].setZero();
+    g.F[k].setZero();
     F_plain[k].setZero();
   }
-  double utilisation2 = 0.0;  // (|u| / bound)^2
-  int sliding = 0;
   const FrictionCap cap(p_);
   const double mu_over_k = p_.mu / p_.k;
   // Whatever the motion, a bristle within a - 2h of the centre lies further than a sub-lattice cell (2h) from the edge
@@ -788,13 +778,13 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
         continue;
       const Eigen::Vector2d x = first + i * along, &u = u_[p];
       const bool slides = sliding_[p];
-      sliding += slides;
+      g.sliding += slides;
       const double r2 = x.squaredNorm(), q_z = cap.qz(r2);
       const double bound = mu_over_k * q_z;
       if (slides)
-        utilisation2 = std::max(utilisation2, 1.0);
+        g.utilisation2 = std::max(g.utilisation2, 1.0);
       else if (bound > 0.0)
-        utilisation2 = std::max(utilisation2, u.squaredNorm() / (bound * bound));
+        g.utilisation2 = std::max(g.utilisation2, u.squaredNorm() / (bound * bound));
       // plain: cellSum's weight is 1 and its cell u on both lattices, and the motion is not needed
       const bool plain = !(r2 > inner2 || (slides && slip_travel_[p] < 2.0 * h_));
       const int sub = 1 + (i & 1) + 2 * (j & 1);
@@ -803,7 +793,7 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
         F_plain[sub] += u;
         M_z_plain[sub] += x.x() * u.y() - x.y() * u.x();
         load_plain[sub] += q_z;
-        step_error += step_error_[p];
+        g.step_error += step_error_[p];
         ++count_plain[sub];
         continue;
       }
@@ -812,26 +802,43 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
       {
         double weight = 1.0;
         const Eigen::Vector2d cell = cellSum(i, j, motion, k, weight);
-        F[k] += cell;
-        M_z[k] += x.x() * cell.y() - x.y() * cell.x();
-        load[k] += weight * q_z;
+        g.F[k] += cell;
+        g.M_z[k] += x.x() * cell.y() - x.y() * cell.x();
+        g.load[k] += weight * q_z;
         if (k == 0)
-          step_error += weight * step_error_[p];
-        ++count[k];
+          g.step_error += weight * step_error_[p];
+        ++g.count[k];
       }
     }
   }
   for (int k = 1; k <= 4; ++k)
   {
-    F[0] += F_plain[k];
-    M_z[0] += M_z_plain[k];
-    load[0] += load_plain[k];
-    count[0] += count_plain[k];
-    F[k] += F_plain[k];
-    M_z[k] += M_z_plain[k];
-    load[k] += load_plain[k];
-    count[k] += count_plain[k];
+    g.F[0] += F_plain[k];
+    g.M_z[0] += M_z_plain[k];
+    g.load[0] += load_plain[k];
+    g.count[0] += count_plain[k];
+    g.F[k] += F_plain[k];
+    g.M_z[k] += M_z_plain[k];
+    g.load[k] += load_plain[k];
+    g.count[k] += count_plain[k];
   }
+}
+
+BrushForces BrushTransient::sums(double& fixed, double& spread) const
+{
+  fixed = spread = 0.0;
+  // The lattice sum, and the same over each of the four sub-lattices of twice the spacing (the parities of
+  // the lattice indices): how far those move from the full sum bounds the error. An error C h^p with p >= 1
+  // makes the difference (2^p - 1) C h^p, at least the error itself; kSpreadFactor times it covers the irregular
+  // part that the cells cut by the patch edge and by the onsets add (measured over noisy histories at random points,
+  // test_brush_transient: without a factor the estimate fell short at 0.2-0.5 % of them, by up to 2.7x).
+  BrushForces f;
+  LatticeSums g;
+  gather(g);
+  const auto& F = g.F;
+  const auto& M_z = g.M_z;
+  const auto& load = g.load;
+  const auto& count = g.count;
   if (count[0] == 0)
     return f;
   // Cell weight normalised so that the lattice sum of q_z is F_z: every bristle obeys |q| <= mu q_z, so
@@ -868,12 +875,12 @@ BrushForces BrushTransient::sums(double& fixed, double& spread) const
   f.F_x = full.F_x;
   f.F_y = full.F_y;
   f.M_z = full.M_z;
-  f.sliding_fraction = static_cast<double>(sliding) / count[0];
-  f.max_utilisation = std::sqrt(utilisation2);
+  f.sliding_fraction = static_cast<double>(g.sliding) / count[0];
+  f.max_utilisation = std::sqrt(g.utilisation2);
   const double scale = p_.mu * p_.F_z;
   fixed = streak_estimate_;
   if (scale > 0.0)
-    fixed += p_.k * step_error * weight(0) / scale;
+    fixed += p_.k * g.step_error * weight(0) / scale;
   fixed += rows_->error(p_.pressure);
   spread = 0.0;
   if (scale > 0.0)

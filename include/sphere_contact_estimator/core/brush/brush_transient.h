@@ -221,6 +221,19 @@ private:
   Eigen::Vector2d headingAt(const Eigen::Vector2d& x) const;
   Motion motionAt(const Eigen::Vector2d& x, const Eigen::Vector2d& e) const;
   Eigen::Vector2d cellSum(int i, int j, const Motion& m, int k, double& weight) const;
+  // What one pass over the lattice gathers for the sums, by lattice (0: the full one, 1-4: the sub-lattices of twice
+  // the spacing, the parities of the indices): the cells' deflections, moments about the centre, loads and counts; and
+  // the bristles' time-step errors (eq. 4b, each over its cell), the largest utilisation squared and how many slide.
+  struct LatticeSums
+  {
+    Eigen::Vector2d F[5];
+    double M_z[5] = {}, load[5] = {};
+    int count[5] = {};
+    double step_error = 0.0;
+    double utilisation2 = 0.0;  // (|u| / bound)^2
+    int sliding = 0;
+  };
+  void gather(LatticeSums& g) const;
   // The sums, and the estimate's two parts: what the steps, streaks and rows bound (fixed), and kSpreadFactor times the
   // sub-lattices' largest spread from the full sum (spread).
   BrushForces sums(double& fixed, double& spread) const;
