@@ -294,6 +294,31 @@ private:
     return false;
   }
 
+  // run()'s rooms (each inlined there):
+  // from the rim (parabolic bound), the first step's start s, direction e, the stretch's error and the direction's
+  // bound inside of it; false where the general solver takes the piece
+  [[gnu::always_inline]] bool startInside(double& s, cd& e, double& error, double& drift) const;
+  // the stages' first guess: the previous step's cubic continued (previous: its stages, or null), or the slow
+  // manifold
+  [[gnu::always_inline]] static void guessStages(const Riccati* R, const Riccati& R0, double step,
+                                                 const double* previous, double previous_step, double* guess);
+  // re-adhesion within the step (from p0, the stages P with directions E = e rotated by T): where the bristle, once
+  // pushed outward (armed), is no longer (eq. 4b's lambda < 0), as a share of the step (< 0: none); armed_next at
+  // its end
+  [[gnu::always_inline]] double reAdhesion(const Point& p0, const Point* P, const cd* E, const double* T, cd e,
+                                           double s, double step, bool armed, bool& armed_next) const;
+  // A step's forces and estimate: the stress's integral over it and its moment (the quadrature's last stage), the
+  // integral of f g, the law's least pull back onto the drive, the travel, the quadrature's error and the
+  // direction's, and the larger of what they err the path by against the step's share of the tolerance (over)
+  struct StepEstimate
+  {
+    cd force;
+    double moment, gf, pull, travel, quad_err, dir_err, over;
+  };
+  [[gnu::always_inline]] StepEstimate estimate(const Point& p0, const Point* P, const cd* E, const double* T,
+                                               const Riccati& R0, cd e, double step, bool referenced,
+                                               bool rejected) const;
+
   PathContext& ctx_;
   const BristleField& f_;
   const BristlePath& p_;
@@ -356,6 +381,222 @@ bool Collocation::collocate(const Riccati* R, double step, const double* guess, 
   return false;
 }
 
+inline bool Collocation::startInside(double& s, cd& e, double& error, double& drift) const
+{
+  // The start on the slow manifold in the drive's frame, off by at most twice the stretch's bound on |Delta|. That
+  // offset decays only at the pull (about e^-s), while the forces it errs grow as e^2s: the steps start further in by
+  // kInset, where the stretch's bound (proportional to its length) is that much smaller, and resolve the rest.
+  double tau0, dmax;
+  if (m_ != 2 || !edgeStretch(f_.drive(p_.entry), true, tau0, dmax))
+    return false;
+  // kInset where the offset's bound, carried at the pull there, would err the path's forces by at most kStartShare
+  // of the tolerance; otherwise e^-4 (only the cost depends on the choice: the offset's bound is carried and added
+  // to the estimate either way)
+  const double tol = ctx_.tolerance;
+  double inset = kInset;
+  s = map_.of(tau0 * inset);
+  Point p = at(s);
+  while (inset > kDeepInset && 2.0 * dmax * inset * carried(s, p.ratio * p.w_abs) > kStartShare * tol)
+  {
+    inset = std::max(kDeepInset, kInsetRung * inset);
+    s = map_.of(tau0 * inset);
+    p = at(s);
+  }
+  tau0 *= inset;
+  dmax *= inset;
+  if (!(p.w_abs > 0.0))
+    return false;
+  e = p.w_hat * rotation(riccati(p, p.w_hat).manifold());
+  error += dmax * tau0 * tau0;
+  drift = 2.0 * dmax;
+  return true;
+}
+
+inline void Collocation::guessStages(const Riccati* R, const Riccati& R0, double step, const double* previous,
+                                      double previous_step, double* guess)
+{
+  if (previous)
+  {
+    // the previous step's cubic, continued, turned into this step's frame (its end): tan((x - y) / 2) from tangents
+    const double r = step / previous_step, t_end = previous[3];
+    for (int i = 0; i < 3; ++i)
+    {
+      const double v = kRadau.cubic(previous, 1.0 + kRadau.c[i] * r);
+      guess[i] = (v - t_end) / (1.0 + v * t_end);
+    }
+  }
+  else
+  {
+    // the slow manifold, the start's offset from it decaying at the pull
+    const double offset = -R0.manifold();
+    for (int i = 0; i < 3; ++i)
+      guess[i] = R[i].manifold() + offset * std::exp(std::max(R0.b, -50.0) * kRadau.c[i] * step);
+  }
+}
+
+inline double Collocation::reAdhesion(const Point& p0, const Point* P, const cd* E, const double* T, cd e, double s,
+                                      double step, bool armed, bool& armed_next) const
+{
+  double lam[4] = { pushing(p0, e), pushing(P[0], E[0]), pushing(P[1], E[1]), pushing(P[2], E[2]) };
+  double xs[6] = { 0.0, kRadau.c[0], kRadau.c[1], 1.0 }, ls[6] = { lam[0], lam[1], lam[2], lam[3] };
+  int count = 4;
+  const double lam_min = *std::min_element(lam, lam + 4), lam_max = *std::max_element(lam, lam + 4);
+  // the cubic dips below its smallest point value by at most 0.4453 times their spread (the largest sum of the
+  // negative Lagrange weights on [0, 1]): where that leaves it positive, no dip is sought
+  if (lam_min >= 0.0 && lam_min <= kDipReach * (lam_max - lam_min))
+  {
+    double lowest = 0.0, at_x = 0.0;
+    for (int i = 0; i < 15; ++i)
+    {
+      const double v = kRadau.dip[i][0] * lam[0] + kRadau.dip[i][1] * lam[1] + kRadau.dip[i][2] * lam[2] +
+                       kRadau.dip[i][3] * lam[3];
+      if (v < lowest)
+        lowest = v, at_x = (i + 1) / 16.0;
+    }
+    if (lowest < 0.0)
+    {
+      const double Tx[4] = { 0.0, T[0], T[1], T[2] };
+      const Point probe = at(s + at_x * step);
+      const double v = pushing(probe, e * rotation(kRadau.cubic(Tx, at_x)));
+      int k = 0;
+      while (k < count && xs[k] < at_x)
+        ++k;
+      for (int j = count; j > k; --j)
+        xs[j] = xs[j - 1], ls[j] = ls[j - 1];
+      xs[k] = at_x;
+      ls[k] = v;
+      ++count;
+    }
+  }
+  // (the start is the previous step's end, judged there)
+  double stop = -1.0, prev = 0.0;
+  armed_next = armed;
+  for (int j = 1; j < count; ++j)
+  {
+    if (ls[j] > 0.0)
+      armed_next = true;
+    else if (armed_next && ls[j] < 0.0)
+    {
+      // bracketed in (prev, x]: regula falsi (Illinois) on the step's cubic
+      const double Tx[4] = { 0.0, T[0], T[1], T[2] };
+      const auto g = [&](double y) {
+        const Point at_y = at(s + y * step);
+        return pushing(at_y, e * rotation(kRadau.cubic(Tx, y)));
+      };
+      double lo = prev, hi = xs[j], g_lo = std::max(ls[j - 1], 0.0), g_hi = ls[j];
+      for (int it = 0; it < 60 && hi - lo > 1e-12; ++it)
+      {
+        const double y =
+            std::clamp(g_lo - g_hi != 0.0 ? hi - g_hi * (hi - lo) / (g_hi - g_lo) : 0.5 * (lo + hi), lo, hi);
+        const double gy = g(y);
+        if (gy < 0.0)
+        {
+          hi = y, g_hi = gy;
+          g_lo *= 0.5;
+        }
+        else
+        {
+          lo = y, g_lo = gy;
+          g_hi *= 0.5;
+        }
+      }
+      stop = hi;
+      break;
+    }
+    prev = xs[j];
+  }
+  return stop;
+}
+
+inline Collocation::StepEstimate Collocation::estimate(const Point& p0, const Point* P, const cd* E, const double* T,
+                                                      const Riccati& R0, cd e, double step, bool referenced,
+                                                      bool rejected) const
+{
+  const double L = p_.length, density = ctx_.tolerance / L;
+  // RADAU5's estimate of the direction's local error (an embedded third-order solution, filtered through the
+  // stiff part so that it stays bounded where the pull is strong); the start is t = 0 in the step's frame
+  const double dz = kRadau.d[0] * T[0] + kRadau.d[1] * T[1] + kRadau.d[2] * T[2];
+  double err_t = (step * R0.a + dz) / (kRadau.u1 - step * R0.b);
+  // The stress f g (e - w / |w|) (or f g e) and its moment: the collocation's quadrature over the stages, the
+  // quadrature components of the ODE system (order 5 like the direction's end value). Their part of RADAU5's estimate:
+  // with J_Ft = dq/dt = f g e 2i at the start the only coupling, err_F = (h q0 + sum d_i Z^F_i + h J_Ft err_t) / u1.
+  const auto stress = [&](const Point& p, cd dir) { return p.g * p.f * (referenced ? dir - p.w_hat : dir); };
+  cd q[4];
+  double qm[4], gf = 0.0;
+  q[0] = stress(p0, e);
+  qm[0] = cross(p0.z, q[0]);
+  for (int i = 0; i < 3; ++i)
+  {
+    q[i + 1] = stress(P[i], E[i]);
+    qm[i + 1] = cross(P[i].z, q[i + 1]);
+    gf += kRadau.a[2][i] * P[i].g * P[i].f;
+  }
+  gf *= step;
+  cd ZF[3];
+  double ZM[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    ZF[i] = step * (kRadau.a[i][0] * q[1] + kRadau.a[i][1] * q[2] + kRadau.a[i][2] * q[3]);
+    ZM[i] = step * (kRadau.a[i][0] * qm[1] + kRadau.a[i][1] * qm[2] + kRadau.a[i][2] * qm[3]);
+  }
+  const cd J_Ft = p0.g * p0.f * e * cd(0.0, 2.0);
+  const cd dZF = kRadau.d[0] * ZF[0] + kRadau.d[1] * ZF[1] + kRadau.d[2] * ZF[2];
+  const double dZM = kRadau.d[0] * ZM[0] + kRadau.d[1] * ZM[1] + kRadau.d[2] * ZM[2];
+  double scale = 0.0;  // the step's stress
+  for (int i = 0; i < 4; ++i)
+    scale = std::max({ scale, std::norm(q[i]), qm[i] * qm[i] });
+  scale = std::sqrt(scale) * step;
+  // RADAU5's estimates are those of an embedded third-order solution; the fifth-order solution's error is smaller
+  // by about the estimate's own size relative to the step's stress (or the direction's change), to the power 1/4:
+  // against the same steps taken by 64 substeps, over 9e4 steps of random paths, true / modelled was at most 1.1 for
+  // the stress, and for the direction where the pull is weak (W h < 1; where it is strong the raw estimate, as stiff
+  // solvers use it).
+  // What it must hold is checked on the totals: the paths' against the general stepper (test BrushCollocation.*) and
+  // the patch's over random operating points (model_accuracy --sweep).
+  double pull = INFINITY, W_max = 0.0;  // the law's pull back onto the drive, (g / f) Re(w e*), per unit s
+  for (int i = 0; i < 3; ++i)
+  {
+    pull = std::min(pull, P[i].ratio * dot(P[i].w, E[i]));
+    W_max = std::max(W_max, P[i].ratio * P[i].w_abs);
+  }
+  const double change = std::abs(T[2]) + 1e-12;
+  const bool stiff = W_max * step >= 1.0;
+  const auto quadErr = [&](double e_t) {
+    const cd eF = (step * q[0] + dZF + step * J_Ft * e_t) / kRadau.u1;
+    const double eM = (step * qm[0] + dZM + step * cross(p0.z, J_Ft) * e_t) / kRadau.u1;
+    const double raw = std::sqrt(std::max(std::norm(eF), eM * eM));
+    if (!(scale > 0.0))
+      return raw;
+    const double relative = raw / scale;
+    return raw * std::min(1.0, std::sqrt(std::sqrt(relative)));
+  };
+  const auto dirErr = [&](double e_t) {
+    const double v = std::abs(e_t);
+    return stiff ? v : v * std::min(1.0, std::sqrt(std::sqrt(v / change)));
+  };
+  // A direction error (dtheta = 2 dt / (1 + t^2) <= 2 dt) errs the forces over this step and, decaying at the pull,
+  // over the travel after it: its share of the tolerance covers both.
+  const double travel = P[2].tau - p0.tau;
+  const double after = std::min(std::max(L - P[2].tau, 0.0), pull > 0.0 ? P[1].g / pull : INFINITY);
+  // the bound over the step and the travel after it (it peaks mid-path)
+  // (its value mid-path is the path's constant; at the step's end it is P[2].f)
+  const double tau_f = std::clamp(0.5 * L, P[2].tau, P[2].tau + after);
+  const double f_after = tau_f == P[2].tau ? P[2].f : tau_f == 0.5 * L ? f_mid_ : boundAt(tau_f);
+  const double f_max = std::max({ p0.f, P[0].f, P[1].f, P[2].f, f_after });
+  double quad_err = 0.0;
+  const auto overOf = [&](double e_t) {
+    quad_err = quadErr(e_t);
+    return std::max(2.0 * dirErr(e_t) * f_max * (travel + after), quad_err) / std::max(density * travel, 1e-300);
+  };
+  double over = overOf(err_t);
+  if (over > 1.0 && rejected)
+  {
+    err_t = (step * R0.rhs(err_t) + dz) / (kRadau.u1 - step * R0.b);
+    over = overOf(err_t);
+  }
+  return { ZF[2], ZM[2], gf, pull, travel, quad_err, dirErr(err_t), over };
+}
+
 bool Collocation::run(const SlideStart& start, SlideEnd& end, SlideStart& resume)
 {
   PathIntegrals& out = ctx_.out;
@@ -374,31 +615,8 @@ bool Collocation::run(const SlideStart& start, SlideEnd& end, SlideStart& resume
   double drift = 0.0;  // bound on the direction's error carried into the next step [rad]
   if (start.from_rim)
   {
-    // The start on the slow manifold in the drive's frame, off by at most twice the stretch's bound on |Delta|. That
-    // offset decays only at the pull (about e^-s), while the forces it errs grow as e^2s: the steps start further in by
-    // kInset, where the stretch's bound (proportional to its length) is that much smaller, and resolve the rest.
-    double tau0, dmax;
-    if (m_ != 2 || !edgeStretch(f_.drive(p_.entry), true, tau0, dmax))
+    if (!startInside(s, e, error, drift))
       return false;
-    // kInset where the offset's bound, carried at the pull there, would err the path's forces by at most kStartShare
-    // of the tolerance; otherwise e^-4 (only the cost depends on the choice: the offset's bound is carried and added
-    // to the estimate either way)
-    double inset = kInset;
-    s = map_.of(tau0 * inset);
-    Point p = at(s);
-    while (inset > kDeepInset && 2.0 * dmax * inset * carried(s, p.ratio * p.w_abs) > kStartShare * tol)
-    {
-      inset = std::max(kDeepInset, kInsetRung * inset);
-      s = map_.of(tau0 * inset);
-      p = at(s);
-    }
-    tau0 *= inset;
-    dmax *= inset;
-    if (!(p.w_abs > 0.0))
-      return false;
-    e = p.w_hat * rotation(riccati(p, p.w_hat).manifold());
-    error += dmax * tau0 * tau0;
-    drift = 2.0 * dmax;
   }
   else
   {
@@ -457,23 +675,7 @@ bool Collocation::run(const SlideStart& start, SlideEnd& end, SlideStart& resume
       R[i] = riccati(P[i], e);
     const Riccati R0 = riccati(p0, e);
     double guess[3];
-    if (have_previous)
-    {
-      // the previous step's cubic, continued, turned into this step's frame (its end): tan((x - y) / 2) from tangents
-      const double r = step / previous_step, t_end = previous[3];
-      for (int i = 0; i < 3; ++i)
-      {
-        const double v = kRadau.cubic(previous, 1.0 + kRadau.c[i] * r);
-        guess[i] = (v - t_end) / (1.0 + v * t_end);
-      }
-    }
-    else
-    {
-      // the slow manifold, the start's offset from it decaying at the pull
-      const double offset = -R0.manifold();
-      for (int i = 0; i < 3; ++i)
-        guess[i] = R[i].manifold() + offset * std::exp(std::max(R0.b, -50.0) * kRadau.c[i] * step);
-    }
+    guessStages(R, R0, step, have_previous ? previous : nullptr, previous_step, guess);
     double T[3];
     if (!collocate(R, step, guess, T) || std::max({ std::abs(T[0]), std::abs(T[1]), std::abs(T[2]) }) > kMaxTurn)
     {
@@ -486,76 +688,8 @@ bool Collocation::run(const SlideStart& start, SlideEnd& end, SlideStart& resume
       E[i] = e * rotation(T[i]);
 
     bool armed_next;
-    // re-adhesion: the first point where the bristle, once pushed outward, is no longer (eq. 4b's lambda < 0). Beside the
-    // stages, the cubic through the four points' sliding speeds is searched for a dip between them, and probed there.
     {
-      double lam[4] = { pushing(p0, e), pushing(P[0], E[0]), pushing(P[1], E[1]), pushing(P[2], E[2]) };
-      double xs[6] = { 0.0, kRadau.c[0], kRadau.c[1], 1.0 }, ls[6] = { lam[0], lam[1], lam[2], lam[3] };
-      int count = 4;
-      const double lam_min = *std::min_element(lam, lam + 4), lam_max = *std::max_element(lam, lam + 4);
-      // the cubic dips below its smallest point value by at most 0.4453 times their spread (the largest sum of the
-      // negative Lagrange weights on [0, 1]): where that leaves it positive, no dip is sought
-      if (lam_min >= 0.0 && lam_min <= kDipReach * (lam_max - lam_min))
-      {
-        double lowest = 0.0, at_x = 0.0;
-        for (int i = 0; i < 15; ++i)
-        {
-          const double v = kRadau.dip[i][0] * lam[0] + kRadau.dip[i][1] * lam[1] + kRadau.dip[i][2] * lam[2] +
-                           kRadau.dip[i][3] * lam[3];
-          if (v < lowest)
-            lowest = v, at_x = (i + 1) / 16.0;
-        }
-        if (lowest < 0.0)
-        {
-          const double Tx[4] = { 0.0, T[0], T[1], T[2] };
-          const Point probe = at(s + at_x * step);
-          const double v = pushing(probe, e * rotation(kRadau.cubic(Tx, at_x)));
-          int k = 0;
-          while (k < count && xs[k] < at_x)
-            ++k;
-          for (int j = count; j > k; --j)
-            xs[j] = xs[j - 1], ls[j] = ls[j - 1];
-          xs[k] = at_x;
-          ls[k] = v;
-          ++count;
-        }
-      }
-      // (the start is the previous step's end, judged there)
-      double stop = -1.0, prev = 0.0;
-      armed_next = armed;
-      for (int j = 1; j < count; ++j)
-      {
-        if (ls[j] > 0.0)
-          armed_next = true;
-        else if (armed_next && ls[j] < 0.0)
-        {
-          // bracketed in (prev, x]: regula falsi (Illinois) on the step's cubic
-          const double Tx[4] = { 0.0, T[0], T[1], T[2] };
-          const auto g = [&](double y) {
-            const Point at_y = at(s + y * step);
-            return pushing(at_y, e * rotation(kRadau.cubic(Tx, y)));
-          };
-          double lo = prev, hi = xs[j], g_lo = std::max(ls[j - 1], 0.0), g_hi = ls[j];
-          for (int it = 0; it < 60 && hi - lo > 1e-12; ++it)
-          {
-            const double y = std::clamp(g_lo - g_hi != 0.0 ? hi - g_hi * (hi - lo) / (g_hi - g_lo) : 0.5 * (lo + hi), lo, hi);
-            const double gy = g(y);
-            if (gy < 0.0)
-            {
-              hi = y, g_hi = gy;
-              g_lo *= 0.5;
-            }
-            else
-            {
-              lo = y, g_lo = gy;
-              g_hi *= 0.5;
-            }
-          }
-          stop = hi;
-          break;
-        }
-        prev = xs[j];
-      }
+      const double stop = reAdhesion(p0, P, E, T, e, s, step, armed, armed_next);
       if (stop > 0.0)
       {
         // the step up to the re-adhesion, collocated on its own
@@ -583,97 +717,18 @@ bool Collocation::run(const SlideStart& start, SlideEnd& end, SlideStart& resume
                             dot(P[0].w_hat, p0.w_hat) >= kCosMaxDriveTurn &&
                             dot(P[1].w_hat, P[0].w_hat) >= kCosMaxDriveTurn &&
                             dot(P[2].w_hat, P[1].w_hat) >= kCosMaxDriveTurn;
-    // RADAU5's estimate of the direction's local error (an embedded third-order solution, filtered through the
-    // stiff part so that it stays bounded where the pull is strong); the start is t = 0 in the step's frame
-    const double dz = kRadau.d[0] * T[0] + kRadau.d[1] * T[1] + kRadau.d[2] * T[2];
-    double err_t = (step * R0.a + dz) / (kRadau.u1 - step * R0.b);
-    // The stress f g (e - w / |w|) (or f g e) and its moment: the collocation's quadrature over the stages, the
-    // quadrature components of the ODE system (order 5 like the direction's end value). Their part of RADAU5's estimate:
-    // with J_Ft = dq/dt = f g e 2i at the start the only coupling, err_F = (h q0 + sum d_i Z^F_i + h J_Ft err_t) / u1.
-    const auto stress = [&](const Point& p, cd dir) { return p.g * p.f * (referenced ? dir - p.w_hat : dir); };
-    cd q[4];
-    double qm[4], gf = 0.0;
-    q[0] = stress(p0, e);
-    qm[0] = cross(p0.z, q[0]);
-    for (int i = 0; i < 3; ++i)
-    {
-      q[i + 1] = stress(P[i], E[i]);
-      qm[i + 1] = cross(P[i].z, q[i + 1]);
-      gf += kRadau.a[2][i] * P[i].g * P[i].f;
-    }
-    gf *= step;
-    cd ZF[3];
-    double ZM[3];
-    for (int i = 0; i < 3; ++i)
-    {
-      ZF[i] = step * (kRadau.a[i][0] * q[1] + kRadau.a[i][1] * q[2] + kRadau.a[i][2] * q[3]);
-      ZM[i] = step * (kRadau.a[i][0] * qm[1] + kRadau.a[i][1] * qm[2] + kRadau.a[i][2] * qm[3]);
-    }
-    const cd J_Ft = p0.g * p0.f * e * cd(0.0, 2.0);
-    const cd dZF = kRadau.d[0] * ZF[0] + kRadau.d[1] * ZF[1] + kRadau.d[2] * ZF[2];
-    const double dZM = kRadau.d[0] * ZM[0] + kRadau.d[1] * ZM[1] + kRadau.d[2] * ZM[2];
-    double scale = 0.0;  // the step's stress
-    for (int i = 0; i < 4; ++i)
-      scale = std::max({ scale, std::norm(q[i]), qm[i] * qm[i] });
-    scale = std::sqrt(scale) * step;
-    // RADAU5's estimates are those of an embedded third-order solution; the fifth-order solution's error is smaller by
-    // about the estimate's own size relative to the step's stress (or the direction's change), to the power 1/4: against
-    // the same steps taken by 64 substeps, over 9e4 steps of random paths, true / modelled was at most 1.1 for the stress,
-    // and for the direction where the pull is weak (W h < 1; where it is strong the raw estimate, as stiff solvers use it).
-    // What it must hold is checked on the totals: the paths' against the general stepper (test BrushCollocation.*) and
-    // the patch's over random operating points (model_accuracy --sweep).
-    double pull = INFINITY, W_max = 0.0;  // the law's pull back onto the drive, (g / f) Re(w e*), per unit s
-    for (int i = 0; i < 3; ++i)
-    {
-      pull = std::min(pull, P[i].ratio * dot(P[i].w, E[i]));
-      W_max = std::max(W_max, P[i].ratio * P[i].w_abs);
-    }
-    const double change = std::abs(T[2]) + 1e-12;
-    const bool stiff = W_max * step >= 1.0;
-    const auto quadErr = [&](double e_t) {
-      const cd eF = (step * q[0] + dZF + step * J_Ft * e_t) / kRadau.u1;
-      const double eM = (step * qm[0] + dZM + step * cross(p0.z, J_Ft) * e_t) / kRadau.u1;
-      const double raw = std::sqrt(std::max(std::norm(eF), eM * eM));
-      if (!(scale > 0.0))
-        return raw;
-      const double relative = raw / scale;
-      return raw * std::min(1.0, std::sqrt(std::sqrt(relative)));
-    };
-    const auto dirErr = [&](double e_t) {
-      const double v = std::abs(e_t);
-      return stiff ? v : v * std::min(1.0, std::sqrt(std::sqrt(v / change)));
-    };
-    // A direction error (dtheta = 2 dt / (1 + t^2) <= 2 dt) errs the forces over this step and, decaying at the pull,
-    // over the travel after it: its share of the tolerance covers both.
-    const double travel = P[2].tau - p0.tau;
-    const double after = std::min(std::max(L - P[2].tau, 0.0), pull > 0.0 ? P[1].g / pull : INFINITY);
-    // the bound over the step and the travel after it (it peaks mid-path)
-    // (its value mid-path is the path's constant; at the step's end it is P[2].f)
-    const double tau_f = std::clamp(0.5 * L, P[2].tau, P[2].tau + after);
-    const double f_after = tau_f == P[2].tau ? P[2].f : tau_f == 0.5 * L ? f_mid_ : boundAt(tau_f);
-    const double f_max = std::max({ p0.f, P[0].f, P[1].f, P[2].f, f_after });
-    double quad_err = 0.0;
-    const auto overOf = [&](double e_t) {
-      quad_err = quadErr(e_t);
-      return std::max(2.0 * dirErr(e_t) * f_max * (travel + after), quad_err) / std::max(density * travel, 1e-300);
-    };
-    double over = overOf(err_t);
-    if (over > 1.0 && rejected)
-    {
-      err_t = (step * R0.rhs(err_t) + dz) / (kRadau.u1 - step * R0.b);
-      over = overOf(err_t);
-    }
+    const StepEstimate x = estimate(p0, P, E, T, R0, e, step, referenced, rejected);
     // over its share where the accepted steps left the room (kMaxOver)
-    const double room = std::min(kMaxOver, 1.0 + slack / std::max(density * travel, 1e-300));
-    if (over > room && step > 10.0 * tiny)
+    const double room = std::min(kMaxOver, 1.0 + slack / std::max(density * x.travel, 1e-300));
+    if (x.over > room && step > 10.0 * tiny)
     {
-      h = step * std::max(0.2, 0.85 / std::sqrt(std::sqrt(over)));
+      h = step * std::max(0.2, 0.85 / std::sqrt(std::sqrt(x.over)));
       rejected = true;
       re_adheres = false;
       continue;
     }
     // accepted
-    slack = std::max(0.0, slack + density * travel * (1.0 - over));
+    slack = std::max(0.0, slack + density * x.travel * (1.0 - x.over));
     armed = armed_next;
     if (referenced && !in_run)
     {
@@ -685,10 +740,10 @@ bool Collocation::run(const SlideStart& start, SlideEnd& end, SlideStart& resume
       integrateRigid(ctx_, run_from, p0.tau, kRigidShare * tol);
       in_run = false;
     }
-    force += ZF[2];
-    moment += ZM[2];
-    error += drift * gf + quad_err;  // the direction's error carried in errs |e - e_exact| <= drift on this step
-    drift = drift * std::exp(std::clamp(-pull * step, -50.0, 2.0)) + 2.0 * dirErr(err_t);
+    force += x.force;
+    moment += x.moment;
+    error += drift * x.gf + x.quad_err;  // the direction's error carried in errs |e - e_exact| <= drift on this step
+    drift = drift * std::exp(std::clamp(-x.pull * step, -50.0, 2.0)) + 2.0 * x.dir_err;
     previous[0] = 0.0;
     previous[1] = T[0];
     previous[2] = T[1];
@@ -706,7 +761,7 @@ bool Collocation::run(const SlideStart& start, SlideEnd& end, SlideStart& resume
       done = true;
       break;
     }
-    h = step * std::clamp(0.85 / std::sqrt(std::sqrt(std::max(over, 1e-12))), 0.2, 3.0);
+    h = step * std::clamp(0.85 / std::sqrt(std::sqrt(std::max(x.over, 1e-12))), 0.2, 3.0);
     h = std::min(h, longest);
     if (const double rest = s_end - s; rest > h && rest <= kStretch * h && rest <= longest)
       h = rest;
