@@ -6,6 +6,7 @@
 #include <cmath>
 
 // Package
+#include "sphere_contact_estimator/core/numerics/illinois.h"
 #include "rigid_sliding.h"
 #include "travel_map.h"
 
@@ -483,24 +484,7 @@ inline double Collocation::reAdhesion(const Point& p0, const Point* P, const cd*
         const Point at_y = at(s + y * step);
         return pushing(at_y, e * rotation(kRadau.cubic(Tx, y)));
       };
-      double lo = prev, hi = xs[j], g_lo = std::max(ls[j - 1], 0.0), g_hi = ls[j];
-      for (int it = 0; it < 60 && hi - lo > 1e-12; ++it)
-      {
-        const double y =
-            std::clamp(g_lo - g_hi != 0.0 ? hi - g_hi * (hi - lo) / (g_hi - g_lo) : 0.5 * (lo + hi), lo, hi);
-        const double gy = g(y);
-        if (gy < 0.0)
-        {
-          hi = y, g_hi = gy;
-          g_lo *= 0.5;
-        }
-        else
-        {
-          lo = y, g_lo = gy;
-          g_hi *= 0.5;
-        }
-      }
-      stop = hi;
+      stop = numerics::illinoisNegativeEnd(g, prev, xs[j], std::max(ls[j - 1], 0.0), ls[j], 1e-12, 60);
       break;
     }
     prev = xs[j];

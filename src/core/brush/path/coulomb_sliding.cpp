@@ -2,6 +2,7 @@
 #include "coulomb_collocation.h"
 #include "rigid_sliding.h"
 #include "travel_map.h"
+#include "sphere_contact_estimator/core/numerics/illinois.h"
 
 // STL
 #include <algorithm>
@@ -630,23 +631,7 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
             const Node at = node(s + y * step);
             return pushing(at, inside(y, at));
           };
-          double lo = prev, hi = x, g_lo = std::max(g(lo), 0.0), g_hi = E;
-          for (int it = 0; it < 60 && hi - lo > 1e-13; ++it)
-          {
-            const double y = std::clamp(g_lo - g_hi != 0.0 ? hi - g_hi * (hi - lo) / (g_hi - g_lo) : 0.5 * (lo + hi), lo, hi);
-            const double gy = g(y);
-            if (gy < 0.0)
-            {
-              hi = y, g_hi = gy;
-              g_lo *= 0.5;
-            }
-            else
-            {
-              lo = y, g_lo = gy;
-              g_hi *= 0.5;
-            }
-          }
-          stop = hi;
+          stop = numerics::illinoisNegativeEnd(g, prev, x, std::max(g(prev), 0.0), E, 1e-13, 60);
           break;
         }
         prev = x;
