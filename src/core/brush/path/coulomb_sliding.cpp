@@ -274,6 +274,76 @@ public:
   SlideEnd run(const SlideStart& start, double stop_tau, PathContext* ctx);
 
 private:
+  // A step's direction: at its end (end) with its error (err), and inside it at a share x of the step: on the slow
+  // manifold (quasi: the quartic through its values at the five points), the quintic Hermite interpolant of Delta in
+  // the drive's frame (smooth), else the fourth-order Magnus approximation over [0, x h] of the quadratic through the
+  // nodes, B(y) = P0 + P1 (y - 1/2) + P2 (y - 1/2)^2, from the start's half-angle vector v0.
+  struct StepDirection
+  {
+    double step = 0.0;
+    bool in_drive = false, quasi = false, smooth = false;
+    double manifold[5] = {};
+    double eta0 = 0.0, lambda = 0.0;  // quasi: the start's deviation from the manifold and the rate it decays at
+    Mat P0, P1, P2;
+    Vec v0;
+    double y0 = 0.0, y1 = 0.0, p0 = 0.0, p1 = 0.0, q0 = 0.0, q1 = 0.0;  // the Hermite interpolant's end data
+    cd end;
+    double err = 0.0;
+
+    cd magnus(double x) const
+    {
+      const double y = x - 0.5, ym = 0.5 * x - 0.5;
+      const Mat integral = x * P0 + (0.5 * (y * y - 0.25)) * P1 + ((y * y * y + 0.125) / 3.0) * P2;
+      const Mat mid = P0 + ym * P1 + (ym * ym) * P2, rate = P1 + (2.0 * ym) * P2;
+      return direction(applyExp(step * integral - (x * x * x * step * step / 12.0) * commutator(mid, rate), v0));
+    }
+    double hermite(double x) const
+    {
+      const double x2 = x * x, x3 = x2 * x, x4 = x3 * x, x5 = x4 * x;
+      return (1.0 - 10.0 * x3 + 15.0 * x4 - 6.0 * x5) * y0 + (x - 6.0 * x3 + 8.0 * x4 - 3.0 * x5) * p0 +
+             (0.5 * x2 - 1.5 * x3 + 1.5 * x4 - 0.5 * x5) * q0 + (10.0 * x3 - 15.0 * x4 + 6.0 * x5) * y1 +
+             (-4.0 * x3 + 7.0 * x4 - 3.0 * x5) * p1 + (0.5 * x3 - x4 + 0.5 * x5) * q1;
+    }
+    cd at(double x, const Node& node) const
+    {
+      if (quasi)
+      {
+        double value = 0.0;
+        for (int k = 0; k < 5; ++k)
+          value += quarticValue(x, k) * manifold[k];
+        return std::polar(1.0, value) * node.w_hat;
+      }
+      if (smooth)
+        return std::polar(1.0, hermite(x)) * node.w_hat;
+      return in_drive ? magnus(x) * node.w_hat : magnus(x);
+    }
+  };
+  // A step's correction to the rigid field, f g (e - w / |w|) (and its moment), by the Gauss rule with its error from
+  // Simpson's; the law's pull mid-step; and the step's errors against its share of the tolerance (over 1: rejected).
+  struct StepForces
+  {
+    cd e_at[3];  // the direction at the Gauss nodes
+    cd gauss_f;
+    double gauss_m = 0.0, quad_err = 0.0, pull = 0.0, over = 0.0;
+  };
+  static cd rigid(const Node& at) { return at.turns ? at.w_hat : cd(0.0); }
+  static void correction(const Node& at, cd dir, cd& force, double& moment)
+  {
+    force = at.g * at.f * (dir - rigid(at));
+    moment = cross(at.z, force);
+  }
+  // run()'s rooms, each inlined there: the slow manifold's step (d.quasi on entry; false where it does not hold), the
+  // Magnus step (its matrices always: the interpolant uses them), the step's forces and estimate, and the share of the
+  // step that slides before a re-adhesion (1: none; armed as eq. 4b's events leave it).
+  [[gnu::always_inline]] void slowManifold(const Node& n0, const Node* n, const Node& nE, cd e, StepDirection& d) const;
+  [[gnu::always_inline]] void magnusStep(const Node& n0, const Node* n, const Node& nE, cd e, double W_max,
+                                         StepDirection& d) const;
+  [[gnu::always_inline]] StepForces stepForces(const Node& n0, const Node* n, const Node& nE, cd e,
+                                               const StepDirection& d, double f_max, double density) const;
+  [[gnu::always_inline]] double slidingShare(const Node& n0, const Node* n, const Node& nE, cd e,
+                                             const StepDirection& d, const StepForces& q, double s, bool edge,
+                                             bool& armed) const;
+
   const BristleField& f_;
   const BristlePath& p_;
   PressureLaw law_;
@@ -288,6 +358,204 @@ double slopeOf(const Node& n, double delta) { return n.Kd - n.W_abs * std::sin(d
 double curvatureOf(const Node& n, double delta)
 {
   return n.Kd_s - n.W_abs_s * std::sin(delta) - n.W_abs * std::cos(delta) * slopeOf(n, delta);
+}
+
+inline void CoulombSlider::slowManifold(const Node& n0, const Node* n, const Node& nE, cd e, StepDirection& d) const
+{
+  // In the drive's frame, where the law pulls the bristle onto the drive much faster than the step is long (W h
+  // beyond the Magnus series' reach, pi) and the direction has relaxed onto it: the slow manifold of
+  // Delta' = Kd - W sin Delta, an expansion in 1 / W, Delta* = arcsin((Kd - D0') / W) with D0 = arcsin(Kd / W); its
+  // last term, halved, bounds the next. What is left of the start's deviation decays at the law's rate W cos Delta*.
+  bool& quasi = d.quasi;
+  const double step = d.step;
+  double qs_err = 0.0;
+  // the five points of the step, x = 0, the three Gauss nodes, 1 (the quartic through them interpolates Delta*)
+  const Node* at5[5] = { &n0, &n[0], &n[1], &n[2], &nE };
+  double* const manifold = d.manifold;
+  // three terms: D0 = arcsin(Kd / W), D1 = arcsin((Kd - D0') / W), D2 = arcsin((Kd - D1') / W), D0' exact from the
+  // nodes' derivatives, D1' from the quartic through the five points; the next term is estimated from the last two
+  // (it is smaller by their ratio, about 1 / (W l), l the inputs' scale)
+  double d0[5], d1[5];
+  for (int j = 0; j < 5 && quasi; ++j)
+  {
+    const Node& x = *at5[j];
+    const double r = x.Kd / x.W_abs;
+    const double r_s = (x.Kd_s * x.W_abs - x.Kd * x.W_abs_s) / (x.W_abs * x.W_abs);
+    const double r1 = std::abs(r) < 0.5 ? (x.Kd - r_s / std::sqrt(1.0 - r * r)) / x.W_abs : 1.0;
+    quasi = std::abs(r1) < 0.5;
+    if (quasi)
+    {
+      d0[j] = std::asin(r);
+      d1[j] = std::asin(r1);
+    }
+  }
+  double term1 = 0.0, term2 = 0.0;
+  for (int j = 0; j < 5 && quasi; ++j)
+  {
+    double d1_x = 0.0;
+    for (int k = 0; k < 5; ++k)
+      d1_x += kQuarticSlope[j][k] * d1[k];
+    const double r2 = (at5[j]->Kd - d1_x / step) / at5[j]->W_abs;
+    quasi = std::abs(r2) < 0.5;
+    manifold[j] = std::asin(r2);
+    term1 = std::max(term1, std::abs(d1[j] - d0[j]));
+    term2 = std::max(term2, std::abs(manifold[j] - d1[j]));
+  }
+  qs_err = term2 * std::min(1.0, 3.0 * term2 / std::max(term1, 1e-300));
+  if (quasi)
+  {
+    d.eta0 = std::arg(e * std::conj(n0.w_hat) * std::polar(1.0, -manifold[0]));
+    d.lambda = n0.W_abs * std::cos(manifold[0]);
+    quasi = std::abs(d.eta0) <= kRelaxed && d.lambda * step >= kStiffStep;
+  }
+  if (quasi)
+  {
+    d.end = std::polar(1.0, manifold[4] + d.eta0 * std::exp(-d.lambda * step)) * nE.w_hat;
+    // The manifold's next term; and the start's deviation eta0, integrated below in closed form to first order
+    // (it decays within 1 / lambda << h): its second-order part and the change of f g over its decay, per unit of f
+    // over the step.
+    d.err = qs_err + std::abs(d.eta0) * (std::abs(d.eta0) + 1.0 / d.lambda) / (d.lambda * step);
+    d.smooth = true;
+  }
+}
+
+inline void CoulombSlider::magnusStep(const Node& n0, const Node* n, const Node& nE, cd e, double W_max,
+                                      StepDirection& d) const
+{
+  const double step = d.step;
+  const bool in_drive = d.in_drive;
+  // sixth- and fourth-order Magnus approximations of the step's log from the same Gauss nodes
+  const Mat& B1 = in_drive ? n[0].Bd : n[0].B;
+  const Mat& B2 = in_drive ? n[1].Bd : n[1].B;
+  const Mat& B3 = in_drive ? n[2].Bd : n[2].B;
+  const cd frame0 = in_drive ? n0.w_hat : cd(1.0, 0.0), frame1 = in_drive ? nE.w_hat : cd(1.0, 0.0);
+  d.v0 = halfAngle(e * std::conj(frame0));
+  d.P0 = B2;
+  d.P1 = (0.5 / kHalfSpread) * (B3 - B1);
+  d.P2 = (0.5 / (kHalfSpread * kHalfSpread)) * (B3 - 2.0 * B2 + B1);
+  if (d.quasi)
+    return;
+  const Mat a1 = step * B2, a2 = (1.2909944487358056 * step) * (B3 - B1) /* sqrt(15) / 3 */,
+            a3 = (10.0 * step / 3.0) * (B3 - 2.0 * B2 + B1);
+  const Mat c1 = commutator(a1, a2);
+  const Mat c2 = (-1.0 / 60.0) * commutator(a1, 2.0 * a3 + c1);
+  const Mat base = a1 + (1.0 / 12.0) * a3;
+  const Mat omega6 = base + (1.0 / 240.0) * commutator(-20.0 * a1 - a3 + c1, a2 + c2);
+  const Mat omega4 = base - (1.0 / 12.0) * c1;
+  const Vec v6 = applyExp(omega6, d.v0), v4 = applyExp(omega4, d.v0);
+  d.end = direction(v6) * frame1;
+  const double de = std::sqrt(std::norm(d.end - direction(v4) * frame1));
+  // The direction inside the step. In the drive's frame: the quintic Hermite interpolant of Delta from its value
+  // and first two derivatives at both ends (sixth order). Where that does not hold (a fast transient) or in the
+  // patch's frame: from the start by the fourth-order Magnus approximation over [0, x h] of the quadratic through
+  // the nodes, B(y) = P0 + P1 (y - 1/2) + P2 (y - 1/2)^2.
+  d.y0 = angleOf(d.v0);
+  d.y1 = d.y0 + std::arg(direction(v6) * std::conj(direction(d.v0)));
+  d.p0 = step * slopeOf(n0, d.y0);
+  d.p1 = step * slopeOf(nE, d.y1);
+  d.q0 = step * step * curvatureOf(n0, d.y0);
+  d.q1 = step * step * curvatureOf(nE, d.y1);
+  d.smooth = in_drive && std::norm(d.magnus(0.5) - std::polar(1.0, d.hermite(0.5))) <= std::max(de * de, 1e-26);
+  // the sixth-order error model holds within the Magnus series' reach (W h well below pi); beyond, the difference
+  d.err = d.smooth && W_max * step <= kMagnusReach ? kSixthOrder * std::pow(de, 1.4) : de;
+}
+
+inline CoulombSlider::StepForces CoulombSlider::stepForces(const Node& n0, const Node* n, const Node& nE, cd e,
+                                                          const StepDirection& d, double f_max, double density) const
+{
+  const double step = d.step, L = p_.length;
+  StepForces q;
+  for (int j = 0; j < 3; ++j)
+    q.e_at[j] = d.at(kC[j], n[j]);
+  // the correction f (e - w / |w|) g and its moment: the Gauss rule, and Simpson's on the ends and the middle node
+  // for its error
+  cd qf[3], qf0, qfE;
+  double qm[3], qm0, qmE;
+  for (int j = 0; j < 3; ++j)
+    correction(n[j], q.e_at[j], qf[j], qm[j]);
+  correction(n0, e, qf0, qm0);
+  correction(nE, d.end, qfE, qmE);
+  q.gauss_f = step * (kW[0] * qf[0] + kW[1] * qf[1] + kW[2] * qf[2]);
+  q.gauss_m = step * (kW[0] * qm[0] + kW[1] * qm[1] + kW[2] * qm[2]);
+  // Simpson's rule is two orders below the Gauss rule: its difference, scaled as QUADPACK scales its Kronrod
+  // difference (by a power of its size relative to the step's scale), estimates the Gauss rule's error.
+  const double simpson_diff = std::max(std::sqrt(std::norm(q.gauss_f - step / 6.0 * (qf0 + 4.0 * qf[1] + qfE))),
+                                       std::abs(q.gauss_m - step / 6.0 * (qm0 + 4.0 * qm[1] + qmE)));
+  double scale = 0.0;
+  for (int j = 0; j < 3; ++j)
+    scale = std::max({ scale, std::sqrt(std::norm(qf[j])), std::abs(qm[j]) });
+  scale = std::max({ scale, std::sqrt(std::norm(qf0)), std::sqrt(std::norm(qfE)) }) * step;
+  q.quad_err =
+      scale > 0.0 ? simpson_diff * std::min(1.0, 10.0 * std::pow(simpson_diff / scale, 0.4)) : simpson_diff;
+  const double travel = nE.tau - n0.tau;
+  // A direction error made here errs the forces over this step and, decaying at the rate the law pulls the bristle back
+  // (d(delta theta)/ds = -(g / f) Re(w e*) delta theta), over the travel after it: the step gets its share of the
+  // tolerance for both. The direction must also stay resolved where the bound is too small for its forces to count:
+  // the events read it.
+  q.pull = n[1].W_abs > 0.0 ? n[1].W_abs * dot(n[1].w_hat, q.e_at[1]) : 0.0;
+  const double after = std::min(std::max(L - nE.tau, 0.0), q.pull > 0.0 ? n[1].g / q.pull : INFINITY);
+  const double share = travel > 0.0 ? std::max(0.1, travel / (travel + after)) : 1.0;  // at most 10x stricter
+  q.over = std::max({ d.err * f_max / (density * share), d.err / kMaxTurnError, 1e-300 });
+  if (q.quad_err > 0.0)
+    q.over = std::max(q.over, q.quad_err / (density * travel));
+  return q;
+}
+
+inline double CoulombSlider::slidingShare(const Node& n0, const Node* n, const Node& nE, cd e, const StepDirection& d,
+                                          const StepForces& q, double s, bool edge, bool& armed) const
+{
+  // re-adhesion: the first sample where the bristle is no longer pushed outward faster than the bound grows. Beside
+  // the step's own samples, a probe where the quartic through the sliding speed at the step's five points is least,
+  // if that dips below zero between them: a re-adhesion window narrower than the samples' spacing (beside a spin
+  // pole) was otherwise found at some step sizes and missed at others, and the paths' structure flickered with the
+  // tolerance.
+  const double step = d.step;
+  double stop = 1.0;  // share of the step that slides
+  double xs[5] = { kC[0], kC[1], kC[2], 1.0, 0.0 };
+  double Es[5] = { pushing(n[0], q.e_at[0]), pushing(n[1], q.e_at[1]), pushing(n[2], q.e_at[2]), pushing(nE, d.end),
+                   0.0 };
+  int samples = edge ? 3 : 4;
+  {
+    const double E5[5] = { pushing(n0, e), Es[0], Es[1], Es[2], Es[3] };
+    double lowest = 0.0, at_x = 0.0;
+    for (int i = 1; i < kDipSamples; ++i)
+    {
+      double value = 0.0;
+      for (int k = 0; k < 5; ++k)
+        value += kDipWeights[i - 1][k] * E5[k];
+      if (value < lowest)
+        lowest = value, at_x = static_cast<double>(i) / kDipSamples;
+    }
+    if (lowest < 0.0 && *std::min_element(E5, E5 + 5) >= 0.0 && !(edge && at_x > kC[2]))
+    {
+      const Node probe = node(s + at_x * step);
+      const int k = static_cast<int>(std::upper_bound(xs, xs + samples, at_x) - xs);
+      for (int i = samples; i > k; --i)
+        xs[i] = xs[i - 1], Es[i] = Es[i - 1];
+      xs[k] = at_x;
+      Es[k] = pushing(probe, d.at(at_x, probe));
+      ++samples;
+    }
+  }
+  double prev = 0.0;
+  for (int j = 0; j < samples; ++j)
+  {
+    const double x = xs[j], E = Es[j];
+    if (E > 0.0)
+      armed = true;
+    else if (armed && E < 0.0)
+    {
+      // bracketed in (prev, x]: regula falsi (Illinois) on the step's interpolant
+      const auto g = [&](double y) {
+        const Node at = node(s + y * step);
+        return pushing(at, d.at(y, at));
+      };
+      stop = numerics::illinoisNegativeEnd(g, prev, x, std::max(g(prev), 0.0), E, 1e-13, 60);
+      break;
+    }
+    prev = x;
+  }
+  return stop;
 }
 
 SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContext* ctx)
@@ -415,228 +683,26 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
         continue;
       }
     }
-    // In the drive's frame, where the law pulls the bristle onto the drive much faster than the step is long (W h beyond
-    // the Magnus series' reach, pi) and the direction has relaxed onto it: the slow manifold of Delta' = Kd - W sin Delta,
-    // an expansion in 1 / W, Delta* = arcsin((Kd - D0') / W) with D0 = arcsin(Kd / W); its last term, halved, bounds the
-    // next. What is left of the start's deviation decays at the law's rate W cos Delta*.
+    // the step's direction: on the slow manifold where the law pulls hard and the bristle has relaxed onto it, else
+    // by the Magnus step
+    StepDirection d;
+    d.step = step;
+    d.in_drive = in_drive;
     const double W_min = std::min({ n0.W_abs, n[0].W_abs, n[1].W_abs, n[2].W_abs, nE.W_abs });
-    bool quasi = in_drive && W_min * step >= kStiffStep;
-    double qs_err = 0.0, eta0 = 0.0, lambda = 0.0;
-    // the five points of the step, x = 0, the three Gauss nodes, 1 (the quartic through them interpolates Delta*)
-    const Node* at5[5] = { &n0, &n[0], &n[1], &n[2], &nE };
-    double manifold[5] = {};
-    if (quasi)
+    d.quasi = in_drive && W_min * step >= kStiffStep;
+    if (d.quasi)
+      slowManifold(n0, n, nE, e, d);
+    magnusStep(n0, n, nE, e, W_max, d);
+    const bool quasi = d.quasi;
+    const StepForces q = stepForces(n0, n, nE, e, d, f_max, density);
+    if (q.over > 1.0 && step > 1e-9 * (1.0 + std::abs(s)))
     {
-      // three terms: D0 = arcsin(Kd / W), D1 = arcsin((Kd - D0') / W), D2 = arcsin((Kd - D1') / W), D0' exact from the
-      // nodes' derivatives, D1' from the quartic through the five points; the next term is estimated from the last two
-      // (it is smaller by their ratio, about 1 / (W l), l the inputs' scale)
-      double d0[5], d1[5];
-      for (int j = 0; j < 5 && quasi; ++j)
-      {
-        const Node& x = *at5[j];
-        const double r = x.Kd / x.W_abs;
-        const double r_s = (x.Kd_s * x.W_abs - x.Kd * x.W_abs_s) / (x.W_abs * x.W_abs);
-        const double r1 = std::abs(r) < 0.5 ? (x.Kd - r_s / std::sqrt(1.0 - r * r)) / x.W_abs : 1.0;
-        quasi = std::abs(r1) < 0.5;
-        if (quasi)
-        {
-          d0[j] = std::asin(r);
-          d1[j] = std::asin(r1);
-        }
-      }
-      double term1 = 0.0, term2 = 0.0;
-      for (int j = 0; j < 5 && quasi; ++j)
-      {
-        double d1_x = 0.0;
-        for (int k = 0; k < 5; ++k)
-          d1_x += kQuarticSlope[j][k] * d1[k];
-        const double r2 = (at5[j]->Kd - d1_x / step) / at5[j]->W_abs;
-        quasi = std::abs(r2) < 0.5;
-        manifold[j] = std::asin(r2);
-        term1 = std::max(term1, std::abs(d1[j] - d0[j]));
-        term2 = std::max(term2, std::abs(manifold[j] - d1[j]));
-      }
-      qs_err = term2 * std::min(1.0, 3.0 * term2 / std::max(term1, 1e-300));
-      if (quasi)
-      {
-        eta0 = std::arg(e * std::conj(n0.w_hat) * std::polar(1.0, -manifold[0]));
-        lambda = n0.W_abs * std::cos(manifold[0]);
-        quasi = std::abs(eta0) <= kRelaxed && lambda * step >= kStiffStep;
-      }
-    }
-    cd e6;
-    double de = 0.0, err = 0.0;
-    bool smooth = false;
-    if (quasi)
-    {
-      e6 = std::polar(1.0, manifold[4] + eta0 * std::exp(-lambda * step)) * nE.w_hat;
-      // The manifold's next term; and the start's deviation eta0, integrated below in closed form to first order
-      // (it decays within 1 / lambda << h): its second-order part and the change of f g over its decay, per unit of f
-      // over the step.
-      err = qs_err + std::abs(eta0) * (std::abs(eta0) + 1.0 / lambda) / (lambda * step);
-      de = err;
-      smooth = true;
-    }
-    // sixth- and fourth-order Magnus approximations of the step's log from the same Gauss nodes
-    const Mat& B1 = in_drive ? n[0].Bd : n[0].B;
-    const Mat& B2 = in_drive ? n[1].Bd : n[1].B;
-    const Mat& B3 = in_drive ? n[2].Bd : n[2].B;
-    const cd frame0 = in_drive ? n0.w_hat : cd(1.0, 0.0), frame1 = in_drive ? nE.w_hat : cd(1.0, 0.0);
-    const Vec v0 = halfAngle(e * std::conj(frame0));
-    const Mat P0 = B2, P1 = (0.5 / kHalfSpread) * (B3 - B1),
-              P2 = (0.5 / (kHalfSpread * kHalfSpread)) * (B3 - 2.0 * B2 + B1);
-    double y0 = 0.0, y1 = 0.0, p0 = 0.0, p1 = 0.0, q0 = 0.0, q1 = 0.0;
-    const auto magnus = [&](double x) {
-      const double y = x - 0.5, ym = 0.5 * x - 0.5;
-      const Mat integral = x * P0 + (0.5 * (y * y - 0.25)) * P1 + ((y * y * y + 0.125) / 3.0) * P2;
-      const Mat mid = P0 + ym * P1 + (ym * ym) * P2, rate = P1 + (2.0 * ym) * P2;
-      return direction(applyExp(step * integral - (x * x * x * step * step / 12.0) * commutator(mid, rate), v0));
-    };
-    const auto hermite = [&](double x) {
-      const double x2 = x * x, x3 = x2 * x, x4 = x3 * x, x5 = x4 * x;
-      return (1.0 - 10.0 * x3 + 15.0 * x4 - 6.0 * x5) * y0 + (x - 6.0 * x3 + 8.0 * x4 - 3.0 * x5) * p0 +
-             (0.5 * x2 - 1.5 * x3 + 1.5 * x4 - 0.5 * x5) * q0 + (10.0 * x3 - 15.0 * x4 + 6.0 * x5) * y1 +
-             (-4.0 * x3 + 7.0 * x4 - 3.0 * x5) * p1 + (0.5 * x3 - x4 + 0.5 * x5) * q1;
-    };
-    if (!quasi)
-    {
-      const Mat a1 = step * B2, a2 = (1.2909944487358056 * step) * (B3 - B1) /* sqrt(15) / 3 */,
-                a3 = (10.0 * step / 3.0) * (B3 - 2.0 * B2 + B1);
-      const Mat c1 = commutator(a1, a2);
-      const Mat c2 = (-1.0 / 60.0) * commutator(a1, 2.0 * a3 + c1);
-      const Mat base = a1 + (1.0 / 12.0) * a3;
-      const Mat omega6 = base + (1.0 / 240.0) * commutator(-20.0 * a1 - a3 + c1, a2 + c2);
-      const Mat omega4 = base - (1.0 / 12.0) * c1;
-      const Vec v6 = applyExp(omega6, v0), v4 = applyExp(omega4, v0);
-      e6 = direction(v6) * frame1;
-      de = std::sqrt(std::norm(e6 - direction(v4) * frame1));
-      // The direction inside the step. In the drive's frame: the quintic Hermite interpolant of Delta from its value
-      // and first two derivatives at both ends (sixth order). Where that does not hold (a fast transient) or in the
-      // patch's frame: from the start by the fourth-order Magnus approximation over [0, x h] of the quadratic through
-      // the nodes, B(y) = P0 + P1 (y - 1/2) + P2 (y - 1/2)^2.
-      y0 = angleOf(v0);
-      y1 = y0 + std::arg(direction(v6) * std::conj(direction(v0)));
-      p0 = step * slopeOf(n0, y0);
-      p1 = step * slopeOf(nE, y1);
-      q0 = step * step * curvatureOf(n0, y0);
-      q1 = step * step * curvatureOf(nE, y1);
-      smooth = in_drive && std::norm(magnus(0.5) - std::polar(1.0, hermite(0.5))) <= std::max(de * de, 1e-26);
-      // the sixth-order error model holds within the Magnus series' reach (W h well below pi); beyond, the difference
-      err = smooth && W_max * step <= kMagnusReach ? kSixthOrder * std::pow(de, 1.4) : de;
-    }
-    // the direction inside the step: on the slow manifold (the quartic through its five points), the Hermite
-    // interpolant, or the fourth-order Magnus approximation from the start
-    const auto inside = [&](double x, const Node& at) {
-      if (quasi)
-      {
-        double value = 0.0;
-        for (int k = 0; k < 5; ++k)
-          value += quarticValue(x, k) * manifold[k];
-        return std::polar(1.0, value) * at.w_hat;
-      }
-      if (smooth)
-        return std::polar(1.0, hermite(x)) * at.w_hat;
-      return in_drive ? magnus(x) * at.w_hat : magnus(x);
-    };
-    cd e_at[3];
-    for (int j = 0; j < 3; ++j)
-      e_at[j] = inside(kC[j], n[j]);
-    // the correction f (e - w / |w|) g and its moment: the Gauss rule, and Simpson's on the ends and the middle node
-    // for its error
-    const auto rigid = [](const Node& at) { return at.turns ? at.w_hat : cd(0.0); };
-    const auto correction = [&](const Node& at, cd dir, cd& force, double& moment) {
-      force = at.g * at.f * (dir - rigid(at));
-      moment = cross(at.z, force);
-    };
-    cd qf[3], qf0, qfE;
-    double qm[3], qm0, qmE;
-    for (int j = 0; j < 3; ++j)
-      correction(n[j], e_at[j], qf[j], qm[j]);
-    correction(n0, e, qf0, qm0);
-    correction(nE, e6, qfE, qmE);
-    const cd gauss_f = step * (kW[0] * qf[0] + kW[1] * qf[1] + kW[2] * qf[2]);
-    const double gauss_m = step * (kW[0] * qm[0] + kW[1] * qm[1] + kW[2] * qm[2]);
-    // Simpson's rule is two orders below the Gauss rule: its difference, scaled as QUADPACK scales its Kronrod
-    // difference (by a power of its size relative to the step's scale), estimates the Gauss rule's error.
-    const double simpson_diff = std::max(std::sqrt(std::norm(gauss_f - step / 6.0 * (qf0 + 4.0 * qf[1] + qfE))),
-                                         std::abs(gauss_m - step / 6.0 * (qm0 + 4.0 * qm[1] + qmE)));
-    double scale = 0.0;
-    for (int j = 0; j < 3; ++j)
-      scale = std::max({ scale, std::sqrt(std::norm(qf[j])), std::abs(qm[j]) });
-    scale = std::max({ scale, std::sqrt(std::norm(qf0)), std::sqrt(std::norm(qfE)) }) * step;
-    const double quad_err =
-        scale > 0.0 ? simpson_diff * std::min(1.0, 10.0 * std::pow(simpson_diff / scale, 0.4)) : simpson_diff;
-    const double travel = nE.tau - n0.tau;
-    // A direction error made here errs the forces over this step and, decaying at the rate the law pulls the bristle back
-    // (d(delta theta)/ds = -(g / f) Re(w e*) delta theta), over the travel after it: the step gets its share of the
-    // tolerance for both. The direction must also stay resolved where the bound is too small for its forces to count:
-    // the events read it.
-    const double pull = n[1].W_abs > 0.0 ? n[1].W_abs * dot(n[1].w_hat, e_at[1]) : 0.0;
-    const double after = std::min(std::max(L - nE.tau, 0.0), pull > 0.0 ? n[1].g / pull : INFINITY);
-    const double share = travel > 0.0 ? std::max(0.1, travel / (travel + after)) : 1.0;  // at most 10x stricter
-    double over = std::max({ err * f_max / (density * share), err / kMaxTurnError, 1e-300 });
-    if (quad_err > 0.0)
-      over = std::max(over, quad_err / (density * travel));
-    if (over > 1.0 && step > 1e-9 * (1.0 + std::abs(s)))
-    {
-      h = step * std::max(0.2, 0.9 * std::pow(1.0 / over, smooth && !quasi ? 1.0 / 7.0 : 0.2));
+      h = step * std::max(0.2, 0.9 * std::pow(1.0 / q.over, d.smooth && !quasi ? 1.0 / 7.0 : 0.2));
       if (quasi)
         quasi_refused = 0;
       continue;
     }
-    // re-adhesion: the first sample where the bristle is no longer pushed outward faster than the bound grows. Beside
-    // the step's own samples, a probe where the quartic through the sliding speed at the step's five points is least,
-    // if that dips below zero between them: a re-adhesion window narrower than the samples' spacing (beside a spin
-    // pole) was otherwise found at some step sizes and missed at others, and the paths' structure flickered with the
-    // tolerance.
-    double stop = 1.0;  // share of the step that slides
-    if (out || stop_tau >= L)
-    {
-      const bool edge = last && end.tau >= L;  // the trailing edge: nothing beyond the step
-      double xs[5] = { kC[0], kC[1], kC[2], 1.0, 0.0 };
-      double Es[5] = { pushing(n[0], e_at[0]), pushing(n[1], e_at[1]), pushing(n[2], e_at[2]), pushing(nE, e6), 0.0 };
-      int samples = edge ? 3 : 4;
-      {
-        const double E5[5] = { pushing(n0, e), Es[0], Es[1], Es[2], Es[3] };
-        double lowest = 0.0, at_x = 0.0;
-        for (int i = 1; i < kDipSamples; ++i)
-        {
-          double value = 0.0;
-          for (int k = 0; k < 5; ++k)
-            value += kDipWeights[i - 1][k] * E5[k];
-          if (value < lowest)
-            lowest = value, at_x = static_cast<double>(i) / kDipSamples;
-        }
-        if (lowest < 0.0 && *std::min_element(E5, E5 + 5) >= 0.0 && !(edge && at_x > kC[2]))
-        {
-          const Node probe = node(s + at_x * step);
-          const int k = static_cast<int>(std::upper_bound(xs, xs + samples, at_x) - xs);
-          for (int i = samples; i > k; --i)
-            xs[i] = xs[i - 1], Es[i] = Es[i - 1];
-          xs[k] = at_x;
-          Es[k] = pushing(probe, inside(at_x, probe));
-          ++samples;
-        }
-      }
-      double prev = 0.0;
-      for (int j = 0; j < samples; ++j)
-      {
-        const double x = xs[j], E = Es[j];
-        if (E > 0.0)
-          armed = true;
-        else if (armed && E < 0.0)
-        {
-          // bracketed in (prev, x]: regula falsi (Illinois) on the step's interpolant
-          const auto g = [&](double y) {
-            const Node at = node(s + y * step);
-            return pushing(at, inside(y, at));
-          };
-          stop = numerics::illinoisNegativeEnd(g, prev, x, std::max(g(prev), 0.0), E, 1e-13, 60);
-          break;
-        }
-        prev = x;
-      }
-    }
+    const double stop = out || stop_tau >= L ? slidingShare(n0, n, nE, e, d, q, s, last && end.tau >= L, armed) : 1.0;
     double integral = 0.0;  // of f over the sliding part of the step
     if (stop < 1.0)
     {
@@ -646,7 +712,7 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
         const Node at = node(s + kC[j] * part);
         cd qf_j;
         double qm_j;
-        correction(at, inside(kC[j] * stop, at), qf_j, qm_j);
+        correction(at, d.at(kC[j] * stop, at), qf_j, qm_j);
         if (out)
         {
           out->force += kW[j] * part * qf_j;
@@ -656,39 +722,39 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
       }
       const Node at = node(s + part);
       end.tau = at.tau;
-      end.direction = inside(stop, at);
+      end.direction = d.at(stop, at);
       end.re_adheres = true;
     }
     else
     {
       if (out)
       {
-        out->force += gauss_f;
-        out->moment += gauss_m;
+        out->force += q.gauss_f;
+        out->moment += q.gauss_m;
       }
       for (int j = 0; j < 3; ++j)
         integral += kW[j] * step * n[j].g * n[j].f;
-      end.direction = e6;
+      end.direction = d.end;
     }
     if (quasi && out)
     {
       // the start's deviation, decaying at lambda: f g (e^{i eta} - 1) e* to first order, integrated in closed form
-      const cd transient = cd(0.0, eta0 / lambda * (1.0 - std::exp(-lambda * step * stop))) * n0.g * n0.f *
-                           std::polar(1.0, manifold[0]) * n0.w_hat;
+      const cd transient = cd(0.0, d.eta0 / d.lambda * (1.0 - std::exp(-d.lambda * step * stop))) * n0.g * n0.f *
+                           std::polar(1.0, d.manifold[0]) * n0.w_hat;
       out->force += transient;
       out->moment += cross(n0.z, transient);
     }
     // The direction's error: this step's, and what earlier steps left, carried at the rate the law pulls the
     // direction back (d(delta theta)/ds = -(g/f) Re(w e*) delta theta); it errs each force by at most that times f.
     // And the quadrature's.
-    drift = drift * std::exp(std::clamp(-pull * step * stop, -50.0, 2.0)) + err;
-    error += 2.0 * drift * integral + stop * quad_err;
-    e = e6;
+    drift = drift * std::exp(std::clamp(-q.pull * step * stop, -50.0, 2.0)) + d.err;
+    error += 2.0 * drift * integral + stop * q.quad_err;
+    e = d.end;
     s += step;
     n0 = nE;
     if (stop < 1.0)
       break;
-    h = step * std::clamp(0.9 * std::pow(1.0 / over, smooth && !quasi ? 1.0 / 7.0 : 0.2), 0.2, 4.0);
+    h = step * std::clamp(0.9 * std::pow(1.0 / q.over, d.smooth && !quasi ? 1.0 / 7.0 : 0.2), 0.2, 4.0);
     // A Magnus step in the drive's frame that ends relaxed onto the drive where the law pulls hard: the next step may be
     // long enough for the slow manifold (the Magnus steps would stay below pi / W).
     was_quasi = quasi;
@@ -697,7 +763,7 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     if (!quasi && in_drive && nE.W_abs * h < kStiffStep && ++quasi_refused > 4)
     {
       const double r = nE.Kd / nE.W_abs, wanted = 1.25 * kStiffStep / nE.W_abs;
-      if (std::abs(r) < 0.5 && std::abs(std::arg(e6 * std::conj(nE.w_hat)) - std::asin(r)) <= kRelaxed &&
+      if (std::abs(r) < 0.5 && std::abs(std::arg(d.end * std::conj(nE.w_hat)) - std::asin(r)) <= kRelaxed &&
           wanted <= map_.longestStep())
       {
         h = std::max(h, wanted);
