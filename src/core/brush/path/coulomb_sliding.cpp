@@ -333,8 +333,8 @@ private:
     moment = cross(at.z, force);
   }
   // run()'s rooms, each inlined there: the slow manifold's step (d.quasi on entry; false where it does not hold), the
-  // Magnus step (its matrices always: the interpolant uses them), the step's forces and estimate, and the share of the
-  // step that slides before a re-adhesion (1: none; armed as eq. 4b's events leave it).
+  // Magnus step where that does not hold (with the matrices of the interpolant it leaves), the step's forces and
+  // estimate, and the share of the step that slides before a re-adhesion (1: none; armed as eq. 4b's events leave it).
   [[gnu::always_inline]] void slowManifold(const Node& n0, const Node* n, const Node& nE, cd e, StepDirection& d) const;
   [[gnu::always_inline]] void magnusStep(const Node& n0, const Node* n, const Node& nE, cd e, double W_max,
                                          StepDirection& d) const;
@@ -433,8 +433,6 @@ inline void CoulombSlider::magnusStep(const Node& n0, const Node* n, const Node&
   d.P0 = B2;
   d.P1 = (0.5 / kHalfSpread) * (B3 - B1);
   d.P2 = (0.5 / (kHalfSpread * kHalfSpread)) * (B3 - 2.0 * B2 + B1);
-  if (d.quasi)
-    return;
   const Mat a1 = step * B2, a2 = (1.2909944487358056 * step) * (B3 - B1) /* sqrt(15) / 3 */,
             a3 = (10.0 * step / 3.0) * (B3 - 2.0 * B2 + B1);
   const Mat c1 = commutator(a1, a2);
@@ -692,7 +690,8 @@ SlideEnd CoulombSlider::run(const SlideStart& start, double stop_tau, PathContex
     d.quasi = in_drive && W_min * step >= kStiffStep;
     if (d.quasi)
       slowManifold(n0, n, nE, e, d);
-    magnusStep(n0, n, nE, e, W_max, d);
+    if (!d.quasi)  // (also where the slow manifold did not hold after all)
+      magnusStep(n0, n, nE, e, W_max, d);
     const bool quasi = d.quasi;
     const StepForces q = stepForces(n0, n, nE, e, d, f_max, density);
     if (q.over > 1.0 && step > 1e-9 * (1.0 + std::abs(s)))
