@@ -129,19 +129,32 @@ class Runner:
         path = os.path.join(self.home, "sphere_odometry.py")
         with open(path, "w") as f:
             f.write(code)
-        publisher = subprocess.Popen(["/usr/bin/python3", path], env=self.env, stdout=subprocess.DEVNULL,
-                                     stderr=subprocess.PIPE, start_new_session=True)
+        # Ctrl-C as a terminal delivers it: a run in the background (CI) inherits SIGINT ignored, and a SIGINT that
+        # reaches the publisher before rospy.init_node installs its handler would then be lost (seen: the loop ran on)
+        err_path = os.path.join(self.home, "sphere_odometry.err")
+        started = time.time()
+        with open(err_path, "w") as err:
+            publisher = subprocess.Popen(["/usr/bin/python3", path], env=dict(self.env, PYTHONFAULTHANDLER="1"),
+                                         stdout=subprocess.DEVNULL, stderr=err, start_new_session=True,
+                                         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
         echo = subprocess.run(["timeout", "20", "rostopic", "echo", "-n", "50", "-p", "/contact_estimate/slips_defined",
                                ], env=self.env, capture_output=True, text=True)
-        fields = subprocess.run(["timeout", "20", "rostopic", "echo", "-n", "1", "/contact_estimate"], env=self.env,
-                                capture_output=True, text=True).stdout
+        one = subprocess.run(["timeout", "20", "rostopic", "echo", "-n", "1", "/contact_estimate"], env=self.env,
+                             capture_output=True, text=True)
+        fields = one.stdout
+        seen = "echo status %d and %d after %.1f s" % (echo.returncode, one.returncode, time.time() - started)
         os.killpg(publisher.pid, signal.SIGINT)
         try:
             publisher.wait(10)
         except subprocess.TimeoutExpired:  # a publisher Ctrl-C cannot end is the README's fault: say so, go on
-            os.killpg(publisher.pid, signal.SIGKILL)
-            publisher.wait()
-            self.report(False, "Python publisher (README: Publishing it)", "still running 10 s after SIGINT (killed)")
+            os.killpg(publisher.pid, signal.SIGABRT)  # PYTHONFAULTHANDLER: every thread's stack to its stderr
+            try:
+                publisher.wait(5)
+            except subprocess.TimeoutExpired:
+                os.killpg(publisher.pid, signal.SIGKILL)
+                publisher.wait()
+            self.report(False, "Python publisher (README: Publishing it)", "still running 10 s after SIGINT (%s)" % seen)
+            print(echo.stderr[-1000:], one.stderr[-1000:], open(err_path).read()[-6000:])
             return
         defined = [l.split(",")[-1] in ("1", "True") for l in echo.stdout.splitlines()[1:]]
 
@@ -153,8 +166,10 @@ class Runner:
             abs(float(m.group(1))) < 1e-6 and abs(float(m.group(2))) < 1e-6 and value("rolling_speed") is not None and \
             abs(float(value("rolling_speed")) - 0.5) < 1e-9
         self.report(ok, "Python publisher (README: Publishing it)",
-                    "%d estimates with slips defined, slip %s, rolling_speed %s" %
-                    (sum(defined), m.groups() if m else None, value("rolling_speed")))
+                    "%d estimates with slips defined, slip %s, rolling_speed %s; %s" %
+                    (sum(defined), m.groups() if m else None, value("rolling_speed"), seen))
+        if not ok:
+            print(echo.stderr[-1000:], one.stderr[-1000:], open(err_path).read()[-3000:])
 
     def close(self):
         self.stop_launch()
