@@ -230,6 +230,12 @@ void ContactEstimatorRos::process(const nav_msgs::Odometry& msg, const std::stri
   last_motion_to_noise_ = e.motion_to_noise;
   within_noise_ += (e.flags & estimate_flags::kMotionWithinNoise) != 0;
   not_rolling_ += (e.flags & estimate_flags::kNotRolling) != 0;
+  if (e.brush.flags & brush_flags::kAccuracyNotMet)
+  {
+    ++accuracy_missed_;
+    if (e.brush_target > 0.0)
+      accuracy_worst_ = std::max(accuracy_worst_, e.brush.error_estimate / e.brush_target);
+  }
   ++since_report_;
   have_estimate_ = true;
   last_covariance_status_ = e.covariance.status;
@@ -382,10 +388,27 @@ void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWra
   status.add("motion / noise, last [-]", last_motion_to_noise_);
   status.add("estimates within noise since the last report", std::to_string(within_noise_) + " of " + std::to_string(since_report_));
   // a parked robot is no problem, but its forces are the bristles' answer to the odometry's noise, not measured sliding
-  std::string parked;
+  std::string notes;  // said at any level
   if (within_noise_ > 0)
-    parked = "parked: the motion is within the odometry's declared noise in " + std::to_string(within_noise_) + " of " +
+    notes = "parked: the motion is within the odometry's declared noise in " + std::to_string(within_noise_) + " of " +
              std::to_string(since_report_) + " estimates (their brush forces are the response to that noise)";
+  // the budget's best answer, flagged, with its estimate: not a fault, but the operator asked for more (work_budget,
+  // accuracy_target); said beside "models valid" so that a spin in place, whose estimate stays well above its error,
+  // does not hold a WARN for as long as it lasts
+  status.add("accuracy target missed since the last report", std::to_string(accuracy_missed_) + " of " +
+                                                                 std::to_string(since_report_));
+  status.add("largest error estimate / target since the last report", accuracy_worst_);
+  if (accuracy_missed_ > 0)
+  {
+    char worst[32];
+    std::snprintf(worst, sizeof worst, "%.3g", accuracy_worst_);
+    const std::string text = "accuracy target missed within the work budget in " + std::to_string(accuracy_missed_) +
+                             " of " + std::to_string(since_report_) + " estimates (error estimate up to " + worst +
+                             " times the target: BRUSH_FLAG_ACCURACY_NOT_MET)";
+    notes = notes.empty() ? text : notes + "; " + text;
+  }
+  accuracy_missed_ = 0;
+  accuracy_worst_ = 0.0;
   within_noise_ = 0;
   since_report_ = 0;
   if (faults_ > reported_faults_)
@@ -399,9 +422,9 @@ void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWra
     return;
   }
   if (problems.empty())
-    status.summary(diagnostic_msgs::DiagnosticStatus::OK, parked.empty() ? "models valid" : "models valid; " + parked);
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, notes.empty() ? "models valid" : "models valid; " + notes);
   else
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, parked.empty() ? problems : problems + "; " + parked);
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, notes.empty() ? problems : problems + "; " + notes);
 }
 
 void ContactEstimatorRos::diagnoseUncertainty(diagnostic_updater::DiagnosticStatusWrapper& status)

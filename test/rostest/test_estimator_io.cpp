@@ -523,6 +523,46 @@ TEST_F(EstimatorIo, ABurstBeyondTheQueueIsCountedAsDropped)
   g_clock += 2.0;
 }
 
+// A target the work budget cannot reach: the answers are flagged, and the contact models' diagnostic says how many and
+// by how much (not a fault: the level stays below ERROR).
+TEST_F(EstimatorIo, AnAccuracyTargetMissedIsSaidInTheDiagnostics)
+{
+  const sce::ContactEstimatorConfig original = config_;
+  ASSERT_TRUE(reconfigure([](sce::ContactEstimatorConfig& c) {
+    c.brush_model = sce::ContactEstimate::BRUSH_AUTO;
+    c.accuracy_target = 1e-6;
+    c.work_budget = 10000;  // the least it takes
+  }));
+  constexpr int kMessages = 20;
+  for (int i = 0; i < kMessages; ++i)
+    odom_pub_.publish(odometry(g_clock + 0.01 * i, 1.0, 0.0, 0.05, 0.02, 8.0));
+  const ros::Time last(g_clock + 0.01 * (kMessages - 1));
+  ASSERT_TRUE(waitFor([&] { return estimateAt(last) != nullptr; }, 20.0));
+  int flagged = 0;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& e : estimates_)
+      flagged += (e.brush_flags & sce::ContactEstimate::BRUSH_FLAG_ACCURACY_NOT_MET) != 0;
+  }
+  EXPECT_GT(flagged, 0) << "a target of 1e-6 within 10^4 units was met: the test does not test the diagnostic";
+  std::string said;
+  double worst = 0.0;
+  EXPECT_TRUE(waitFor([&] {
+    const auto it = diagnostics_.find(kNode.substr(1) + ": contact models");
+    if (it == diagnostics_.end() || it->second.message.find("accuracy target missed") == std::string::npos)
+      return false;
+    said = it->second.message;
+    EXPECT_LT(it->second.level, diagnostic_msgs::DiagnosticStatus::ERROR) << said;
+    for (const auto& kv : it->second.values)
+      if (kv.key == "largest error estimate / target since the last report")
+        worst = std::stod(kv.value);
+    return true;
+  }, 5.0)) << "the contact models' diagnostic never said the target was missed";
+  EXPECT_GT(worst, 1.0) << said;
+  EXPECT_TRUE(reconfigure([&](sce::ContactEstimatorConfig& c) { c = original; }));
+  g_clock += 2.0;
+}
+
 // One update that takes seconds (the transient model on a fine lattice rolling 5 cm): the diagnostics go on at their
 // rate meanwhile (their own queue and thread, and a lock the update does not hold).
 TEST_F(EstimatorIo, DiagnosticsDoNotWaitForALongUpdate)
