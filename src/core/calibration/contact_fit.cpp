@@ -691,29 +691,11 @@ FitResult fitWithFrictionBounded(const std::vector<CalibrationSample>& samples, 
                            " for the others");
   return second;
 }
-}  // namespace
-
-FitResult fitContact(const std::vector<CalibrationSample>& samples, const EstimatorSettings& settings,
-                     const FitOptions& options)
+// Each message's lag of the steady state: 2a |dV_r/dt| / V_r^2, the rolling speed's rate by a least-squares line over
+// the window around it (infinite where the sphere does not roll).
+std::vector<double> steadyLag(const std::vector<CalibrationSample>& samples, const Prediction& first, double a,
+                              const FitOptions& options)
 {
-  FitResult out;
-  out.samples = static_cast<int>(samples.size());
-  EstimatorSettings base = settings;
-  base.accuracy_target = std::min(settings.accuracy_target, options.accuracy_target);
-  base.auto_noise_fraction = 0.0;    // the models' accuracy is the fit's, not the noise's
-  base.propagate_covariance = true;  // (for the flag of a parked robot, kMotionWithinNoise)
-  std::vector<FitParameter> fitted;
-  for (int j = 0; j < kParameters; ++j)
-    if (options.fit[j] && !(static_cast<FitParameter>(j) == FitParameter::SurfaceDamping &&
-                            settings.rolling_resistance_model == CylinderModelKind::Off))
-      fitted.push_back(static_cast<FitParameter>(j));
-
-  // which messages enter, and what the fit keeps of them: the flags and the frame do not depend on the parameters
-  EstimatorSettings kinematic = base;
-  kinematic.brush_model = BrushModelKind::Off;  // the flags and the frame are the kinematics': no brush needed here
-  const Prediction first = predictForces(samples, kinematic);
-  // the rolling speed's rate by a least-squares line over the window around each message: the steady state's lag
-  const double a = base.brushParameters().a;
   std::vector<double> lag(samples.size(), 0.0);
   for (std::size_t i = 0, lo = 0, hi = 0; i < samples.size(); ++i)
   {
@@ -737,7 +719,15 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
     const double v = first.speed[i];
     lag[i] = v > 0.0 ? 2.0 * a * std::abs(rate) / (v * v) : std::numeric_limits<double>::infinity();
   }
+  return lag;
+}
 
+// The messages that enter the fit, each with its measured slips and their whitening prior; why the others stay out
+// (out.rejected, out.rejection) and which entered (out.used_mask, out.used).
+std::vector<Message> selectMessages(const std::vector<CalibrationSample>& samples, const Prediction& first,
+                                    const std::vector<double>& lag, const EstimatorSettings& base,
+                                    const FitOptions& options, FitResult& out)
+{
   out.used_mask.assign(samples.size(), 0u);
   out.rejection.assign(samples.size(), Rejection::Count);
   out.residuals.assign(samples.size(), Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN()));
@@ -781,17 +771,19 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
     out.used_mask[i] = 1;
     ++out.used;
   }
-  if (out.used == 0)
-    throw std::invalid_argument("calibration: no sample can enter the fit (each was rejected; see the counts)");
+  return messages;
+}
 
-  const Parameters params(base, fitted);
+// The best of the solves from several starts: the file's values, and below and above them (exp(x) times the file's).
+// A long run is solved first on a subset of its messages (what the parameters need comes from a few hundred), then
+// whole from there: the whole run's solve then starts close and takes a few iterations.
+Solution solveFromStarts(const std::vector<Message>& messages, const Parameters& params, const FitOptions& options,
+                         int& iterations)
+{
   const int n = params.size();
   Solution best;
   best.x.assign(n, 0.0);
   double best_cost = std::numeric_limits<double>::infinity();
-  // starts: the file's values, and below and above them (exp(x) times the file's). A long run is solved first on a
-  // subset of its messages (what the parameters need comes from a few hundred), then whole from there: the whole
-  // run's solve then starts close and takes a few iterations
   const std::size_t stride = std::max<std::size_t>(1, messages.size() / kSubsetMessages);
   for (double factor : { 1.0, 1.0 / options.start_spread, options.start_spread })
   {
@@ -800,11 +792,11 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
     std::vector<double> x(n, std::log(factor));
     if (stride > 1)
     {
-      const Solution subset = solve(messages, params, options, x, nullptr, stride, out.iterations);
+      const Solution subset = solve(messages, params, options, x, nullptr, stride, iterations);
       if (subset.summary.IsSolutionUsable())
         x = subset.x;
     }
-    Solution whole = solve(messages, params, options, x, nullptr, 1, out.iterations);
+    Solution whole = solve(messages, params, options, x, nullptr, 1, iterations);
     if (whole.summary.IsSolutionUsable() && whole.summary.final_cost < best_cost)
     {
       best_cost = whole.summary.final_cost;
@@ -820,13 +812,16 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
         break;
     }
   }
+  return best;
+}
 
-  // the parameters' covariance with the latent slips marginalised, and what the used messages covered
-  EstimatorSettings result = params.at(best.x.data());
-  Eigen::MatrixXd info = Eigen::MatrixXd::Zero(n, n);
-  double chi2 = 0.0;
+// At the fit: each used message's information on the parameters (the latent slips marginalised) and its residual
+// (out.residuals), and what the used messages covered (speeds, slips, sliding, the largest force for sure). Returns
+// how many slide over options.sliding_share of the patch.
+int gatherInformation(const std::vector<Message>& messages, const Parameters& params, const Solution& best,
+                      const FitOptions& options, FitResult& out, Eigen::MatrixXd& info, double& chi2)
+{
   int sliding_samples = 0;
-  out.fitted = predictForces(samples, result);
   bool first_used = true;
   // the largest force the run shows for sure: less than the largest of N noisy readings can reach by noise alone
   // (the maximum of N standard normals stays below sqrt(2 ln N) + 2 but for a share far below a percent)
@@ -849,11 +844,17 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
     if (out.fitted.sliding[k] >= options.sliding_share)
       ++sliding_samples;
   }
-  // the residuals' streaks: lag-1 autocorrelation over the used messages in order
+  return sliding_samples;
+}
+
+// The residuals' streaks: lag-1 autocorrelation on each axis over the used messages in order.
+Eigen::Vector2d residualAutocorrelation(const std::vector<Eigen::Vector2d>& residuals)
+{
+  Eigen::Vector2d out = Eigen::Vector2d::Zero();
   for (int axis = 0; axis < 2; ++axis)
   {
     std::vector<double> v;
-    for (const Eigen::Vector2d& r : out.residuals)
+    for (const Eigen::Vector2d& r : residuals)
       if (r.allFinite())
         v.push_back(r[axis]);
     if (v.size() < 3)
@@ -869,8 +870,89 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
       if (i + 1 < v.size())
         num += (v[i] - mean) * (v[i + 1] - mean);
     }
-    out.residual_autocorrelation[axis] = den > 0.0 ? num / den : 0.0;
+    out[axis] = den > 0.0 ? num / den : 0.0;
   }
+  return out;
+}
+
+// One fitted parameter (the k-th of the solve) at the fit: its value, sd and interval from the covariance, and whether
+// the data determine it, or why not (no convergence, too wide, mu without sliding, pressed against its range).
+FittedValue fittedValue(FitParameter parameter, int k, const EstimatorSettings& base, const EstimatorSettings& result,
+                        const Eigen::MatrixXd& cov, const FitResult& out, const FitOptions& options,
+                        int sliding_samples)
+{
+  FittedValue v;
+  v.parameter = parameter;
+  v.start = field(base, parameter);
+  v.fitted = true;
+  v.value = field(result, parameter);
+  v.sd = v.value * std::sqrt(std::max(0.0, cov(k, k)));  // sd of the log times the value
+  v.low = v.value - kInterval95 * v.sd;
+  v.high = v.value + kInterval95 * v.sd;
+  v.determined = out.converged && std::isfinite(v.sd) && v.sd <= options.determined_sd * v.value;
+  if (!out.converged)
+    v.note = "the fit did not converge";
+  else if (!v.determined)
+    v.note = "the data do not determine it (sd above " + std::to_string(static_cast<int>(100 * options.determined_sd)) +
+             " % of the value)";
+  if (parameter == FitParameter::Friction && sliding_samples < FitOptions::kMinSlidingSamples)
+  {
+    // without sliding, friction only bounds the forces seen: mu F_z >= |F_t| wherever the patch sticks
+    v.determined = false;
+    v.lower_bound = out.force_max / base.verticalLoad();
+    v.note = "the run never slides (at most " + std::to_string(static_cast<int>(100 * out.sliding_max + 0.5)) +
+             " % of the patch): mu is only bounded below";
+  }
+  const auto range = rangeOf(parameter, result);
+  if (v.value <= range.first * (1.0 + 1e-6) || v.value >= range.second * (1.0 - 1e-6))
+  {
+    // pressed against its range: the data push it beyond what the parameter can be (a run that is not the model's)
+    v.determined = false;
+    v.note = "at the edge of its range [" + formatValue(range.first) + ", " + formatValue(range.second) +
+             "]: the data push it beyond (a run that is not the model's?)";
+  }
+  if (parameter == FitParameter::SurfaceDamping && v.determined)
+    v.note = "with surface_stiffness held: the floor's relaxation time gamma/k_s = " +
+             formatValue(v.value / base.surface_stiffness) + " s";
+  return v;
+}
+}  // namespace
+
+FitResult fitContact(const std::vector<CalibrationSample>& samples, const EstimatorSettings& settings,
+                     const FitOptions& options)
+{
+  FitResult out;
+  out.samples = static_cast<int>(samples.size());
+  EstimatorSettings base = settings;
+  base.accuracy_target = std::min(settings.accuracy_target, options.accuracy_target);
+  base.auto_noise_fraction = 0.0;    // the models' accuracy is the fit's, not the noise's
+  base.propagate_covariance = true;  // (for the flag of a parked robot, kMotionWithinNoise)
+  std::vector<FitParameter> fitted;
+  for (int j = 0; j < kParameters; ++j)
+    if (options.fit[j] && !(static_cast<FitParameter>(j) == FitParameter::SurfaceDamping &&
+                            settings.rolling_resistance_model == CylinderModelKind::Off))
+      fitted.push_back(static_cast<FitParameter>(j));
+
+  // which messages enter, and what the fit keeps of them: the flags and the frame do not depend on the parameters
+  EstimatorSettings kinematic = base;
+  kinematic.brush_model = BrushModelKind::Off;  // the flags and the frame are the kinematics': no brush needed here
+  const Prediction first = predictForces(samples, kinematic);
+  const std::vector<double> lag = steadyLag(samples, first, base.brushParameters().a, options);
+  std::vector<Message> messages = selectMessages(samples, first, lag, base, options, out);
+  if (out.used == 0)
+    throw std::invalid_argument("calibration: no sample can enter the fit (each was rejected; see the counts)");
+
+  const Parameters params(base, fitted);
+  const int n = params.size();
+  const Solution best = solveFromStarts(messages, params, options, out.iterations);
+
+  // the parameters' covariance with the latent slips marginalised, and what the used messages covered
+  EstimatorSettings result = params.at(best.x.data());
+  Eigen::MatrixXd info = Eigen::MatrixXd::Zero(n, n);
+  double chi2 = 0.0;
+  out.fitted = predictForces(samples, result);
+  const int sliding_samples = gatherInformation(messages, params, best, options, out, info, chi2);
+  out.residual_autocorrelation = residualAutocorrelation(out.residuals);
   out.converged = n == 0 || best.summary.termination_type == ceres::CONVERGENCE;
   // five residuals and three latent slips a message: two degrees of freedom each, less the parameters
   const int dof = std::max(1, 2 * out.used - n);
@@ -885,46 +967,19 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
 
   for (int j = 0; j < kParameters; ++j)
   {
-    FittedValue v;
-    v.parameter = static_cast<FitParameter>(j);
-    v.start = field(base, v.parameter);
-    v.value = v.start;
-    const auto it = std::find(fitted.begin(), fitted.end(), v.parameter);
+    const FitParameter parameter = static_cast<FitParameter>(j);
+    const auto it = std::find(fitted.begin(), fitted.end(), parameter);
     if (it != fitted.end())
     {
-      const int k = static_cast<int>(it - fitted.begin());
-      v.fitted = true;
-      v.value = field(result, v.parameter);
-      v.sd = v.value * std::sqrt(std::max(0.0, cov(k, k)));  // sd of the log times the value
-      v.low = v.value - kInterval95 * v.sd;
-      v.high = v.value + kInterval95 * v.sd;
-      v.determined = out.converged && std::isfinite(v.sd) && v.sd <= options.determined_sd * v.value;
-      if (!out.converged)
-        v.note = "the fit did not converge";
-      else if (!v.determined)
-        v.note = "the data do not determine it (sd above " + std::to_string(static_cast<int>(100 * options.determined_sd)) +
-                 " % of the value)";
-      if (v.parameter == FitParameter::Friction && sliding_samples < FitOptions::kMinSlidingSamples)
-      {
-        // without sliding, friction only bounds the forces seen: mu F_z >= |F_t| wherever the patch sticks
-        v.determined = false;
-        v.lower_bound = out.force_max / base.verticalLoad();
-        v.note = "the run never slides (at most " + std::to_string(static_cast<int>(100 * out.sliding_max + 0.5)) +
-                 " % of the patch): mu is only bounded below";
-      }
-      const auto range = rangeOf(v.parameter, result);
-      if (v.value <= range.first * (1.0 + 1e-6) || v.value >= range.second * (1.0 - 1e-6))
-      {
-        // pressed against its range: the data push it beyond what the parameter can be (a run that is not the model's)
-        v.determined = false;
-        v.note = "at the edge of its range [" + formatValue(range.first) + ", " + formatValue(range.second) +
-                 "]: the data push it beyond (a run that is not the model's?)";
-      }
-      if (v.parameter == FitParameter::SurfaceDamping && v.determined)
-        v.note = "with surface_stiffness held: the floor's relaxation time gamma/k_s = " +
-                 formatValue(v.value / base.surface_stiffness) + " s";
+      out.values.push_back(fittedValue(parameter, static_cast<int>(it - fitted.begin()), base, result, cov, out,
+                                       options, sliding_samples));
+      continue;
     }
-    else if (v.parameter == FitParameter::SurfaceDamping && options.fit[j])
+    FittedValue v;
+    v.parameter = parameter;
+    v.start = field(base, parameter);
+    v.value = v.start;
+    if (parameter == FitParameter::SurfaceDamping && options.fit[j])
       v.note = "not fitted: rolling_resistance_model is off";
     out.values.push_back(v);
   }
