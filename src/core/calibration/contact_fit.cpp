@@ -530,52 +530,171 @@ namespace
 // partial sliding bends the force-slip curve the more, the lower mu), and a stiffness fitted at one held mu misses the
 // truth by many of its standard deviations where that mu is off. The profile of the fit's cost over mu >= the bound
 // tells which mu the forces' shape allows: a likelihood-ratio set, twice the cost within 3.84 (chi-square, one degree,
-// 95 %) times the reduced chi-square of its minimum. The stiffness's interval spans its fits over that set; the
-// settings hold mu at the file's value or the nearest the data allow, with the stiffness fitted at it.
+// 95 %) times the reduced chi-square of its minimum.
+//
+// The profile is taken over a subset of a long run's messages (as the first solve: fewer messages, a wider set): at the
+// free fit's mu (in the set: its cost is the lowest), at the bound and at friction's largest value, then halved (in log
+// mu) across the set's edges. The cost is taken to have one minimum over mu (the set an interval), the stiffness to
+// change monotonically between neighbouring points (its fits decrease with mu: the less the patch slides, the less
+// stiffness the same forces need).
+class FrictionProfile
+{
+public:
+  static constexpr double kMuMax = kFrictionMax;
+
+  /// result: the free fit's settings (the points' first starts); iterations: the solves' count, added to
+  FrictionProfile(const std::vector<Message>& messages, const EstimatorSettings& base, const EstimatorSettings& result,
+                  const FitOptions& options, bool with_floor, int& iterations)
+    : messages_(messages)
+    , base_(base)
+    , result_(result)
+    , options_(options)
+    , with_floor_(with_floor)
+    , stride_(std::max<std::size_t>(1, messages.size() / kSubsetMessages))
+    , iterations_(iterations)
+  {
+  }
+
+  /// The first points: at the free fit's mu, at the bound and at friction's largest value.
+  void start(double bound)
+  {
+    const double mu_low = std::min(kMuMax, std::max(bound, kFrictionMin));  // friction's range: 1e-3 to 100
+    const double mu_free = std::min(kMuMax, std::max(mu_low, result_.friction));
+    profile_.push_back(fit(mu_free, nullptr));
+    if (mu_low < mu_free)
+      profile_.insert(profile_.begin(), fit(mu_low, &profile_.front()));
+    if (mu_free < kMuMax)
+      profile_.push_back(fit(kMuMax, &profile_[profile_.size() - 1]));
+    findBest();
+  }
+
+  /// The cost's least point was fitted.
+  bool usable() const { return profile_[best_].usable; }
+
+  /// Between points the set's edge, and the stiffness with it, may lie anywhere: each step across the edge halved until
+  /// the stiffness changes by less than kStepInSd of its sd across it; past kMaxProfile points the step's far end is
+  /// taken in whole (coarse_: wider, not narrower).
+  void refine()
+  {
+    constexpr double kStepInSd = 0.5;
+    constexpr std::size_t kMaxProfile = 40;
+    for (bool refined = true; refined;)
+    {
+      refined = false;
+      for (std::size_t i = 0; i + 1 < profile_.size(); ++i)
+      {
+        const ProfilePoint &p = profile_[i], &q = profile_[i + 1];
+        if (inSet(p) == inSet(q) || !p.usable || !q.usable ||
+            std::abs(p.k - q.k) <= kStepInSd * std::min(p.sd, q.sd) || q.mu <= p.mu * (1.0 + 1e-6))
+          continue;
+        if (profile_.size() >= kMaxProfile)
+        {
+          coarse_.emplace_back(p.k, q.k);
+          continue;
+        }
+        ProfilePoint mid = fit(std::sqrt(p.mu * q.mu), inSet(p) ? &p : &q);
+        profile_.insert(profile_.begin() + static_cast<std::ptrdiff_t>(i) + 1, std::move(mid));
+        findBest();
+        refined = true;
+        break;
+      }
+    }
+  }
+
+  /// The set's ends over mu; open: it reaches friction's largest value (any mu above its lower end fits).
+  void muRange(double& lo, double& hi, bool& open) const
+  {
+    open = profile_.back().mu >= kMuMax && inSet(profile_.back());
+    lo = std::numeric_limits<double>::infinity();
+    hi = 0.0;
+    for (const ProfilePoint& p : profile_)
+      if (inSet(p))
+      {
+        lo = std::min(lo, p.mu);
+        hi = std::max(hi, p.mu);
+      }
+  }
+
+  /// The point at mu: the profile's own where it has one there, else fitted from the nearest (not added to it);
+  /// k_nearest: that nearest point's stiffness.
+  ProfilePoint at(double mu, double& k_nearest)
+  {
+    std::size_t nearest = best_;
+    for (std::size_t j = 0; j < profile_.size(); ++j)
+      if (profile_[j].usable &&
+          std::abs(std::log(profile_[j].mu / mu)) < std::abs(std::log(profile_[nearest].mu / mu)))
+        nearest = j;
+    k_nearest = profile_[nearest].k;
+    return profile_[nearest].mu == mu ? profile_[nearest] : fit(mu, &profile_[nearest]);
+  }
+
+  /// The stiffness's span over the set, its fits carried to the whole run (times shift, their sd times narrow and
+  /// shift), each within its 95 % interval; the coarse steps' ends count whole. Widens [lo, hi].
+  void stiffnessSpan(double shift, double narrow, double& lo, double& hi) const
+  {
+    for (const ProfilePoint& p : profile_)
+      if (inSet(p))
+      {
+        const double sd = std::isfinite(p.sd) ? p.sd * narrow * shift : std::numeric_limits<double>::infinity();
+        lo = std::min(lo, p.k * shift - kInterval95 * sd);
+        hi = std::max(hi, p.k * shift + kInterval95 * sd);
+      }
+    for (const auto& step : coarse_)
+    {
+      lo = std::min({ lo, step.first * shift, step.second * shift });
+      hi = std::max({ hi, step.first * shift, step.second * shift });
+    }
+  }
+
+private:
+  static constexpr double kChi2One95 = 3.841;  // chi-square with one degree of freedom, 95 % quantile
+
+  void findBest()
+  {
+    best_ = 0;
+    for (std::size_t j = 1; j < profile_.size(); ++j)
+      if (profile_[j].usable && (!profile_[best_].usable || profile_[j].cost < profile_[best_].cost))
+        best_ = j;
+  }
+  bool inSet(const ProfilePoint& p) const
+  {
+    return p.usable &&
+           p.cost <= profile_[best_].cost + 0.5 * kChi2One95 * std::max(1.0, profile_[best_].reduced_chi2);
+  }
+  // a point fitted at mu, starting from a neighbouring point's fit where it has one, else the free fit's
+  ProfilePoint fit(double mu, const ProfilePoint* near)
+  {
+    EstimatorSettings start = base_;
+    start.bristle_stiffness = near && near->usable ? near->k : result_.bristle_stiffness;
+    start.surface_damping = near && near->usable ? near->damping : result_.surface_damping;
+    return profileAt(messages_, start, mu, with_floor_, options_, stride_, iterations_,
+                     near && near->usable ? &near->latent : nullptr);
+  }
+
+  const std::vector<Message>& messages_;
+  const EstimatorSettings& base_;
+  const EstimatorSettings& result_;
+  const FitOptions& options_;
+  const bool with_floor_;
+  const std::size_t stride_;
+  int& iterations_;
+  std::vector<ProfilePoint> profile_;  // in increasing mu
+  std::size_t best_ = 0;               // the least cost's point
+  std::vector<std::pair<double, double>> coarse_;  // steps left unresolved: their ends' stiffness both count
+};
+
+// The settings hold mu at the file's value or the nearest the data allow, with the stiffness fitted at it; the
+// stiffness's interval spans its fits over the set FrictionProfile finds.
 FitResult fitWithFrictionBounded(const std::vector<CalibrationSample>& samples, const EstimatorSettings& settings,
                                  const FitOptions& options, const std::vector<Message>& messages,
                                  const EstimatorSettings& base, const EstimatorSettings& result, const FitResult& free)
 {
-  constexpr double kMuMax = kFrictionMax;
-  constexpr double kChi2One95 = 3.841;  // chi-square with one degree of freedom, 95 % quantile
   const FittedValue& mu = free.values[static_cast<int>(FitParameter::Friction)];
   const bool with_floor = free.values[static_cast<int>(FitParameter::SurfaceDamping)].fitted;
   const double bound = mu.lower_bound;
   int iterations = free.iterations;
-
-  // The profile over a subset of a long run's messages (as the first solve: fewer messages, a wider set): at the free
-  // fit's mu (in the set: its cost is the lowest), at the bound and at friction's largest value, then halved (in log
-  // mu) across the set's edges. The cost is taken to have one minimum over mu (the set an interval), the stiffness
-  // to change monotonically between neighbouring points (its fits decrease with mu: the less the patch slides, the
-  // less stiffness the same forces need).
-  const std::size_t stride = std::max<std::size_t>(1, messages.size() / kSubsetMessages);
-  const double threshold_factor = 0.5 * kChi2One95;
-  std::vector<ProfilePoint> profile;  // in increasing mu
-  std::size_t best = 0;
-  const auto findBest = [&]() {
-    best = 0;
-    for (std::size_t j = 1; j < profile.size(); ++j)
-      if (profile[j].usable && (!profile[best].usable || profile[j].cost < profile[best].cost))
-        best = j;
-  };
-  const auto inSet = [&](const ProfilePoint& p) {
-    return p.usable && p.cost <= profile[best].cost + threshold_factor * std::max(1.0, profile[best].reduced_chi2);
-  };
-  const auto at = [&](double m, const ProfilePoint* near) {
-    EstimatorSettings start = base;
-    start.bristle_stiffness = near && near->usable ? near->k : result.bristle_stiffness;
-    start.surface_damping = near && near->usable ? near->damping : result.surface_damping;
-    return profileAt(messages, start, m, with_floor, options, stride,
-                     iterations, near && near->usable ? &near->latent : nullptr);
-  };
-  const double mu_low = std::min(kMuMax, std::max(bound, kFrictionMin));  // friction's range: 1e-3 to 100
-  const double mu_free = std::min(kMuMax, std::max(mu_low, result.friction));
-  profile.push_back(at(mu_free, nullptr));
-  if (mu_low < mu_free)
-    profile.insert(profile.begin(), at(mu_low, &profile.front()));
-  if (mu_free < kMuMax)
-    profile.push_back(at(kMuMax, &profile[profile.size() - 1]));
-  findBest();
+  FrictionProfile profile(messages, base, result, options, with_floor, iterations);
+  profile.start(bound);
   FitOptions again = options;
   again.fit[static_cast<int>(FitParameter::Friction)] = false;
   EstimatorSettings held = settings;
@@ -592,7 +711,7 @@ FitResult fitWithFrictionBounded(const std::vector<CalibrationSample>& samples, 
     second.settings.friction = held.friction;  // the file's, or the nearest value the run allows
     second.iterations += iterations;
   };
-  if (!profile[best].usable)
+  if (!profile.usable())
   {
     FitResult second = fitContact(samples, held, again);
     FittedValue& k = second.values[static_cast<int>(FitParameter::BristleStiffness)];
@@ -603,54 +722,18 @@ FitResult fitWithFrictionBounded(const std::vector<CalibrationSample>& samples, 
     holdFriction(second, mu.note);
     return second;
   }
-  // Between points the set's edge, and the stiffness with it, may lie anywhere: halve each step across the edge until
-  // the stiffness changes by less than kStepInSd of its sd across it; past kMaxProfile points the step's far end is
-  // taken in whole (wider, not narrower).
-  constexpr double kStepInSd = 0.5;
-  constexpr std::size_t kMaxProfile = 40;
-  std::vector<std::pair<double, double>> coarse;  // steps left unresolved: their ends' stiffness both count
-  for (bool refined = true; refined;)
-  {
-    refined = false;
-    for (std::size_t i = 0; i + 1 < profile.size(); ++i)
-    {
-      const ProfilePoint &p = profile[i], &q = profile[i + 1];
-      if (inSet(p) == inSet(q) || !p.usable || !q.usable ||
-          std::abs(p.k - q.k) <= kStepInSd * std::min(p.sd, q.sd) || q.mu <= p.mu * (1.0 + 1e-6))
-        continue;
-      if (profile.size() >= kMaxProfile)
-      {
-        coarse.emplace_back(p.k, q.k);
-        continue;
-      }
-      ProfilePoint mid = at(std::sqrt(p.mu * q.mu), inSet(p) ? &p : &q);
-      profile.insert(profile.begin() + static_cast<std::ptrdiff_t>(i) + 1, std::move(mid));
-      findBest();
-      refined = true;
-      break;
-    }
-  }
-  // the set reaches friction's largest value: any mu above its lower end fits
-  const bool open = profile.back().mu >= kMuMax && inSet(profile.back());
-  double mu_lo = std::numeric_limits<double>::infinity(), mu_hi = 0.0;
-  for (const ProfilePoint& p : profile)
-    if (inSet(p))
-    {
-      mu_lo = std::min(mu_lo, p.mu);
-      mu_hi = std::max(mu_hi, p.mu);
-    }
+  profile.refine();
+  double mu_lo, mu_hi;
+  bool open;
+  profile.muRange(mu_lo, mu_hi, open);
   // mu for the node: the file's (or the bound), moved to the nearest the forces allow
   held.friction = std::max(held.friction, mu_lo);
   if (!open)
     held.friction = std::min(held.friction, mu_hi);
-  std::size_t nearest = best;
-  for (std::size_t j = 0; j < profile.size(); ++j)
-    if (profile[j].usable &&
-        std::abs(std::log(profile[j].mu / held.friction)) < std::abs(std::log(profile[nearest].mu / held.friction)))
-      nearest = j;
-  const ProfilePoint h = profile[nearest].mu == held.friction ? profile[nearest] : at(held.friction, &profile[nearest]);
+  double k_nearest;
+  const ProfilePoint h = profile.at(held.friction, k_nearest);
   // the stiffness with mu held, every message (the profile's value there a start close to the answer)
-  held.bristle_stiffness = h.usable ? h.k : profile[nearest].k;
+  held.bristle_stiffness = h.usable ? h.k : k_nearest;
   FitResult second = fitContact(samples, held, again);
   FittedValue& k = second.values[static_cast<int>(FitParameter::BristleStiffness)];
   k.start = settings.bristle_stiffness;
@@ -662,18 +745,7 @@ FitResult fitWithFrictionBounded(const std::vector<CalibrationSample>& samples, 
   const double shift = h.usable ? k.value / h.k : 1.0;
   const double narrow = h.usable && std::isfinite(h.sd) && h.sd > 0.0 ? std::min(1.0, k.sd / h.sd) : 1.0;
   double k_lo = k.low, k_hi = k.high;
-  for (const ProfilePoint& p : profile)
-    if (inSet(p))
-    {
-      const double sd = std::isfinite(p.sd) ? p.sd * narrow * shift : std::numeric_limits<double>::infinity();
-      k_lo = std::min(k_lo, p.k * shift - kInterval95 * sd);
-      k_hi = std::max(k_hi, p.k * shift + kInterval95 * sd);
-    }
-  for (const auto& step : coarse)
-  {
-    k_lo = std::min({ k_lo, step.first * shift, step.second * shift });
-    k_hi = std::max({ k_hi, step.first * shift, step.second * shift });
-  }
+  profile.stiffnessSpan(shift, narrow, k_lo, k_hi);
   k.low = std::max(0.0, k_lo);
   k.high = k_hi;
   const std::string range = open ? "mu >= " + formatValue(mu_lo) : "mu from " + formatValue(mu_lo) + " to " +
