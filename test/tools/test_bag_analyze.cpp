@@ -201,10 +201,27 @@ TEST_F(BagAnalyze, SummaryAgainstClosedForms)
   EXPECT_NEAR(s.rollingResistanceEnergy(), s.peakRollingResistance() * 1.0 * 2.0, 1e-9 * s.rollingResistanceEnergy());
   EXPECT_EQ(s.brushModelsUsed()[2], r.estimates);
 
+  EXPECT_EQ(s.accuracyMissed(), 0u);
+  EXPECT_NE(s.report().find("target met at every estimate"), std::string::npos) << s.report();
+
   // pure rolling: no sliding, so (almost) nothing for the patch to take
   const sce::BagAnalysisResult rolling = sce::analyzeBag(options(writeBag("rolling.bag", 1.0, 0.0, 1.0, false)));
   EXPECT_NEAR(rolling.summary.brushEnergy(), 0.0, 1e-9);
   EXPECT_NEAR(rolling.summary.slidingShareAny(), 0.0, 1e-12);
+
+  // a target the least work budget cannot reach: every such answer counted, with how far its estimate is off
+  sce::BagAnalysisOptions hard = options(writeBag("hard.bag", 1.0, 0.05, 1.0, false));
+  hard.config.brush_model = 4;  // auto
+  hard.config.accuracy_target = 1e-6;
+  hard.config.work_budget = 10000;
+  const sce::BagAnalysisResult missed = sce::analyzeBag(hard);
+  EXPECT_GT(missed.summary.accuracyMissed(), 0u);
+  EXPECT_LE(missed.summary.accuracyMissed(), missed.estimates);
+  EXPECT_GT(missed.summary.worstAccuracyRatio(), 1.0);
+  EXPECT_NE(missed.summary.report().find("target missed within the work budget at " +
+                                         std::to_string(missed.summary.accuracyMissed()) + " estimates"),
+            std::string::npos)
+      << missed.summary.report();
 }
 
 TEST_F(BagAnalyze, ParameterFiles)

@@ -16,6 +16,12 @@ void RunSummary::add(const ContactEstimateData& e)
     ++resets_;
   if (e.modelFault())
     ++faults_;
+  if (e.brush.flags & brush_flags::kAccuracyNotMet)
+  {
+    ++accuracy_missed_;
+    if (e.brush_target > 0.0)
+      accuracy_worst_ = std::max(accuracy_worst_, e.brush.error_estimate / e.brush_target);
+  }
   const auto used = static_cast<std::size_t>(e.brush_model_used);
   if (used < models_used_.size())
     ++models_used_[used];
@@ -68,6 +74,16 @@ std::string RunSummary::report() const
                 peak_moment_, peak_rr_, share(models_used_[0]), share(models_used_[1]), share(models_used_[2]),
                 share(models_used_[3]));
   std::string out = buffer;
+  if (accuracy_missed_ > 0)
+  {
+    std::snprintf(buffer, sizeof(buffer),
+                  "  brush accuracy        target missed within the work budget at %llu estimates (%.1f %%; error "
+                  "estimate up to %.3g times it: BRUSH_FLAG_ACCURACY_NOT_MET)\n",
+                  static_cast<unsigned long long>(accuracy_missed_), share(accuracy_missed_), accuracy_worst_);
+    out += buffer;
+  }
+  else if (models_used_[0] < estimates_)
+    out += "  brush accuracy        target met at every estimate\n";
   if (faults_ > 0)
     out += "  MODEL FAULTS          " + std::to_string(faults_) +
            " estimates without forces: a model threw (a defect: please report it with the bag; the CSV's flags say "

@@ -37,12 +37,17 @@ public:
   std::uint64_t invalid() const { return invalid_; }       ///< estimates outside a model's assumptions
   std::uint64_t resets() const { return resets_; }         ///< time jumps and gaps
   std::uint64_t faults() const { return faults_; }         ///< estimates whose model threw (kModelFault): a defect
+  /// Brush answers flagged brush_flags::kAccuracyNotMet (the target not reached within the work budget), and the
+  /// largest of their error estimates over the target.
+  std::uint64_t accuracyMissed() const { return accuracy_missed_; }
+  double worstAccuracyRatio() const { return accuracy_worst_; }
 
   /// A few lines for people: distance, energies, sliding, peaks, the models auto chose.
   std::string report() const;
 
 private:
-  std::uint64_t estimates_ = 0, invalid_ = 0, resets_ = 0, faults_ = 0;
+  std::uint64_t estimates_ = 0, invalid_ = 0, resets_ = 0, faults_ = 0, accuracy_missed_ = 0;
+  double accuracy_worst_ = 0.0;
   std::array<std::uint64_t, 4> models_used_{};
   double duration_ = 0.0, distance_ = 0.0, rr_energy_ = 0.0, brush_energy_ = 0.0;
   double sliding_any_ = 0.0, sliding_mostly_ = 0.0;
