@@ -391,7 +391,7 @@ void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWra
   std::string notes;  // said at any level
   if (within_noise_ > 0)
     notes = "parked: the motion is within the odometry's declared noise in " + std::to_string(within_noise_) + " of " +
-             std::to_string(since_report_) + " estimates (their brush forces are the response to that noise)";
+            std::to_string(since_report_) + " estimates (their brush forces are the response to that noise)";
   // the budget's best answer, flagged, with its estimate: not a fault, but the operator asked for more (work_budget,
   // accuracy_target); said beside "models valid" so that a spin in place, whose estimate stays well above its error,
   // does not hold a WARN for as long as it lasts
