@@ -230,12 +230,7 @@ void ContactEstimatorRos::process(const nav_msgs::Odometry& msg, const std::stri
   last_motion_to_noise_ = e.motion_to_noise;
   within_noise_ += (e.flags & estimate_flags::kMotionWithinNoise) != 0;
   not_rolling_ += (e.flags & estimate_flags::kNotRolling) != 0;
-  if (e.brush.flags & brush_flags::kAccuracyNotMet)
-  {
-    ++accuracy_missed_;
-    if (e.brush_target > 0.0)
-      accuracy_worst_ = std::max(accuracy_worst_, e.brush.error_estimate / e.brush_target);
-  }
+  accuracy_missed_.add(e);
   ++since_report_;
   have_estimate_ = true;
   last_covariance_status_ = e.covariance.status;
@@ -395,20 +390,20 @@ void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWra
   // the budget's best answer, flagged, with its estimate: not a fault, but the operator asked for more (work_budget,
   // accuracy_target); said beside "models valid" so that a spin in place, whose estimate stays well above its error,
   // does not hold a WARN for as long as it lasts
-  status.add("accuracy target missed since the last report", std::to_string(accuracy_missed_) + " of " +
+  status.add("accuracy target missed since the last report", std::to_string(accuracy_missed_.count) + " of " +
                                                                  std::to_string(since_report_));
-  status.add("largest error estimate / target since the last report", accuracy_worst_);
-  if (accuracy_missed_ > 0)
+  status.add("largest error estimate / target since the last report", accuracy_missed_.worst);
+  if (accuracy_missed_.count > 0)
   {
     char worst[32];
-    std::snprintf(worst, sizeof worst, "%.3g", accuracy_worst_);
-    const std::string text = "accuracy target missed within the work budget in " + std::to_string(accuracy_missed_) +
-                             " of " + std::to_string(since_report_) + " estimates (error estimate up to " + worst +
+    std::snprintf(worst, sizeof worst, "%.3g", accuracy_missed_.worst);
+    const std::string text = "accuracy target missed within the work budget in " +
+                             std::to_string(accuracy_missed_.count) + " of " + std::to_string(since_report_) +
+                             " estimates (error estimate up to " + worst +
                              " times the target: BRUSH_FLAG_ACCURACY_NOT_MET)";
     notes = notes.empty() ? text : notes + "; " + text;
   }
-  accuracy_missed_ = 0;
-  accuracy_worst_ = 0.0;
+  accuracy_missed_ = {};
   within_noise_ = 0;
   since_report_ = 0;
   if (faults_ > reported_faults_)

@@ -28,6 +28,7 @@
 #include "sphere_contact_estimator/ContactEstimate.h"
 #include "sphere_contact_estimator/ContactEstimatorConfig.h"
 #include "sphere_contact_estimator/core/estimator/contact_estimator.h"
+#include "sphere_contact_estimator/core/estimator/run_summary.h"
 #include "sphere_contact_estimator/ros/message_pool.h"
 #include "sphere_contact_estimator/ros/odometry_estimator.h"
 
@@ -125,9 +126,7 @@ private:
   std::uint64_t over_spread_ = 0, reported_bad_covariance_ = 0;
   std::uint64_t within_noise_ = 0, since_report_ = 0;  // estimates flagged kMotionWithinNoise, and all, since the last report
   std::uint64_t not_rolling_ = 0;  // estimates flagged kNotRolling since the last report
-  // brush answers flagged kAccuracyNotMet since the last report, and their largest error estimate over its target
-  std::uint64_t accuracy_missed_ = 0;
-  double accuracy_worst_ = 0.0;
+  AccuracyMisses accuracy_missed_;  // since the last report
   // models that threw (ContactEstimator::faults) and messages whose processing threw elsewhere, in all and at the last
   // report, and what the last one said
   std::uint64_t faults_ = 0, reported_faults_ = 0;

@@ -1010,7 +1010,7 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
   kinematic.brush_model = BrushModelKind::Off;  // the flags and the frame are the kinematics': no brush needed here
   const Prediction first = predictForces(samples, kinematic);
   const std::vector<double> lag = steadyLag(samples, first, base.brushParameters().a, options);
-  std::vector<Message> messages = selectMessages(samples, first, lag, base, options, out);
+  const std::vector<Message> messages = selectMessages(samples, first, lag, base, options, out);
   if (out.used == 0)
     throw std::invalid_argument("calibration: no sample can enter the fit (each was rejected; see the counts)");
 

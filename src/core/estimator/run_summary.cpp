@@ -7,6 +7,15 @@
 
 namespace sphere_contact_estimator
 {
+void AccuracyMisses::add(const ContactEstimateData& e)
+{
+  if (!(e.brush.flags & brush_flags::kAccuracyNotMet))
+    return;
+  ++count;
+  if (e.brush_target > 0.0)
+    worst = std::max(worst, e.brush.error_estimate / e.brush_target);
+}
+
 void RunSummary::add(const ContactEstimateData& e)
 {
   ++estimates_;
@@ -16,12 +25,7 @@ void RunSummary::add(const ContactEstimateData& e)
     ++resets_;
   if (e.modelFault())
     ++faults_;
-  if (e.brush.flags & brush_flags::kAccuracyNotMet)
-  {
-    ++accuracy_missed_;
-    if (e.brush_target > 0.0)
-      accuracy_worst_ = std::max(accuracy_worst_, e.brush.error_estimate / e.brush_target);
-  }
+  accuracy_.add(e);
   const auto used = static_cast<std::size_t>(e.brush_model_used);
   if (used < models_used_.size())
     ++models_used_[used];
@@ -74,12 +78,12 @@ std::string RunSummary::report() const
                 peak_moment_, peak_rr_, share(models_used_[0]), share(models_used_[1]), share(models_used_[2]),
                 share(models_used_[3]));
   std::string out = buffer;
-  if (accuracy_missed_ > 0)
+  if (accuracy_.count > 0)
   {
     std::snprintf(buffer, sizeof(buffer),
                   "  brush accuracy        target missed within the work budget at %llu estimates (%.1f %%; error "
                   "estimate up to %.3g times it: BRUSH_FLAG_ACCURACY_NOT_MET)\n",
-                  static_cast<unsigned long long>(accuracy_missed_), share(accuracy_missed_), accuracy_worst_);
+                  static_cast<unsigned long long>(accuracy_.count), share(accuracy_.count), accuracy_.worst);
     out += buffer;
   }
   else if (models_used_[0] < estimates_)

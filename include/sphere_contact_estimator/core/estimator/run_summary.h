@@ -10,6 +10,15 @@
 
 namespace sphere_contact_estimator
 {
+/// Brush answers flagged brush_flags::kAccuracyNotMet (the target not reached within the work budget), and the largest
+/// of their error estimates over the target: bag_analyze's summary and the node's diagnostic count them alike.
+struct AccuracyMisses
+{
+  std::uint64_t count = 0;
+  double worst = 0.0;  ///< largest error_estimate / target [-]
+  void add(const ContactEstimateData& e);
+};
+
 /// What a run did, accumulated over its estimates (bag_analyze's summary). Integrals use the trapezoid rule
 /// over each estimate's own dt, so the intervals the estimator did not advance over (a gap longer than
 /// max_step, a time jump, a duplicate stamp) count nothing.
@@ -39,15 +48,15 @@ public:
   std::uint64_t faults() const { return faults_; }         ///< estimates whose model threw (kModelFault): a defect
   /// Brush answers flagged brush_flags::kAccuracyNotMet (the target not reached within the work budget), and the
   /// largest of their error estimates over the target.
-  std::uint64_t accuracyMissed() const { return accuracy_missed_; }
-  double worstAccuracyRatio() const { return accuracy_worst_; }
+  std::uint64_t accuracyMissed() const { return accuracy_.count; }
+  double worstAccuracyRatio() const { return accuracy_.worst; }
 
   /// A few lines for people: distance, energies, sliding, peaks, the models auto chose.
   std::string report() const;
 
 private:
-  std::uint64_t estimates_ = 0, invalid_ = 0, resets_ = 0, faults_ = 0, accuracy_missed_ = 0;
-  double accuracy_worst_ = 0.0;
+  std::uint64_t estimates_ = 0, invalid_ = 0, resets_ = 0, faults_ = 0;
+  AccuracyMisses accuracy_;
   std::array<std::uint64_t, 4> models_used_{};
   double duration_ = 0.0, distance_ = 0.0, rr_energy_ = 0.0, brush_energy_ = 0.0;
   double sliding_any_ = 0.0, sliding_mostly_ = 0.0;
