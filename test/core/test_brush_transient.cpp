@@ -452,6 +452,57 @@ void compareAlongNoisyHistory(std::mt19937_64& rng, const BrushParameters& coars
   }
 }
 
+TEST(BrushTransient, ARenewedLatticeAnswersAsANewOne)
+{
+  // auto reuses a dropped lattice's storage for its next finer one (renew): that lattice must be the one the
+  // constructor builds. One driven along a random noisy history (at 64, under another law, with and without tilt,
+  // stepped by substeps and whole, with a work budget, coarsened), renewed, against one built with the same
+  // parameters, along another history: the same answers, bit for bit, at every message.
+  std::mt19937_64 rng(31);
+  int stale = 0;  // histories where the driven lattice predicted another step than a new one of its parameters
+  for (int h = 0; h < 24; ++h)
+  {
+    const SlidingLaw law = h % 2 == 0 ? SlidingLaw::Coulomb : SlidingLaw::Rigid;
+    BrushParameters p = test::drawEnvelopeParameters(rng, h, law);
+    p.resolution = 16;
+    const SlidingLaw other = law == SlidingLaw::Coulomb ? SlidingLaw::Rigid : SlidingLaw::Coulomb;
+    BrushParameters old = test::drawEnvelopeParameters(rng, h + 1, other);
+    old.resolution = 64;
+    old.tilt = h % 3 == 0;
+    BrushTransient used(old);
+    used.setWorkBudget(50000);
+    const test::NoisyHistoryDraw before = test::drawNoisyHistory(rng, old);
+    for (int m = 0; m < 8; ++m)
+    {
+      used.setStepping(m < 3 ? TransientStepping::Substeps : TransientStepping::WholeStep);
+      used.update(before.history.message(rng, false, old), m == 0 ? 0.0 : before.dt);
+    }
+    ASSERT_TRUE(used.coarsen());
+    used.update(before.history.message(rng, false, old), before.dt);
+    BrushTransient fresh(p);
+    const test::NoisyHistoryDraw draw = test::drawNoisyHistory(rng, p);
+    const ContactKinematics first = draw.history.message(rng, false, p);
+    stale += used.predictWork(first, draw.dt) != BrushTransient(used.parameters()).predictWork(first, draw.dt);
+    const std::size_t capacity = used.pointCapacity();
+    used.renew(p);
+    EXPECT_EQ(used.pointCapacity(), capacity) << "the storage was not kept";
+    ASSERT_EQ(used.predictWork(first, draw.dt), fresh.predictWork(first, draw.dt)) << "history " << h;
+    for (int m = 0; m < 24; ++m)
+    {
+      const ContactKinematics k = draw.history.message(rng, draw.parked && m >= 16, p);
+      const double step = m == 0 ? 0.0 : draw.dt;
+      const BrushForces a = used.update(k, step), b = fresh.update(k, step);
+      ASSERT_EQ(a.F_x, b.F_x) << "history " << h << ", message " << m;
+      ASSERT_EQ(a.F_y, b.F_y) << "history " << h << ", message " << m;
+      ASSERT_EQ(a.M_z, b.M_z) << "history " << h << ", message " << m;
+      ASSERT_EQ(a.error_estimate, b.error_estimate) << "history " << h << ", message " << m;
+      ASSERT_EQ(a.work, b.work) << "history " << h << ", message " << m;
+      ASSERT_EQ(used.predictWork(k, draw.dt), fresh.predictWork(k, draw.dt)) << "history " << h << ", message " << m;
+    }
+  }
+  EXPECT_GE(stale, 4) << "too few driven lattices remembered their steps: the comparison shows little";
+}
+
 TEST(BrushTransient, ErrorEstimateCoversNoisyHistoriesAtRandomPoints)
 {
   // Seeded random operating points over the envelope (a = 0.01-0.08 m, F_z = 20-5000 N, mu = 0.2-1.2,

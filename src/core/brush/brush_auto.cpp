@@ -47,6 +47,31 @@ BrushAuto::BrushAuto(const BrushParameters& parameters)
 
 BrushAuto::~BrushAuto() = default;
 
+void BrushAuto::retire(std::unique_ptr<BrushTransient>& lattice)
+{
+  if (lattice && (!spare_ || spare_->pointCapacity() < lattice->pointCapacity()))
+    spare_ = std::move(lattice);
+  lattice.reset();
+}
+
+void BrushAuto::resizeTransient(int resolution)
+{
+  const std::size_t needed = BrushTransient::points(resolution);
+  if (spare_ && resolution != transient_->lastResolution() && transient_->pointCapacity() < needed &&
+      spare_->pointCapacity() > transient_->pointCapacity())
+    transient_->swapStorage(*spare_);  // setParameters resets the state at another resolution: only storage changes
+  transient_->setParameters(withResolution(p_, resolution));
+}
+
+std::unique_ptr<BrushTransient> BrushAuto::latticeAt(int resolution)
+{
+  if (!spare_)
+    return std::make_unique<BrushTransient>(withResolution(p_, resolution));  // the first: it allocates
+  std::unique_ptr<BrushTransient> lattice = std::move(spare_);
+  lattice->renew(withResolution(p_, resolution));
+  return lattice;
+}
+
 void BrushAuto::rotateFrame(double alpha)
 {
   transient_->rotateFrame(alpha);
@@ -72,13 +97,13 @@ void BrushAuto::reset()
   if (transient_resolution_ != configured_resolution_)
   {
     transient_resolution_ = configured_resolution_;
-    transient_->setParameters(withResolution(p_, transient_resolution_));
+    resizeTransient(transient_resolution_);
   }
   pending_resolution_ = 0;
   budget_cut_ = 0;
   easy_travel_ = 0.0;
   transient_->reset();
-  finer_.reset();
+  retire(finer_);
   in_transient_ = false;
   probation_ = false;
   steady_distance_ = 0.0;
@@ -193,14 +218,14 @@ void BrushAuto::enterTransient(const ContactKinematics& kin, double dt)
   const double V = have_rolling_ ? last_rolling_.V_r.norm() : 0.0;
   const double warm = have_rolling_ ? 2.5 * longestPath(p_) / V : 0.0;
   if (resolution != transient_resolution_)
-    transient_->setParameters(withResolution(p_, resolution));
+    resizeTransient(resolution);
   const int wanted = resolution;
   // the cost of a lattice grows as its resolution cubed (points times substeps)
   while (resolution / 2 >= BrushTransient::kMinCoarsened &&
          (have_rolling_ ? transient_->predictWork(last_rolling_, warm) : 0) + transient_->predictWork(kin, dt) > remaining())
   {
     resolution /= 2;
-    transient_->setParameters(withResolution(p_, resolution));  // rare: it allocates
+    transient_->setParameters(withResolution(p_, resolution));  // smaller: within its storage
   }
   transient_resolution_ = resolution;
   budget_cut_ = resolution < wanted ? wanted : 0;
@@ -359,7 +384,7 @@ void BrushAuto::chooseFamily(const ContactKinematics& kin, const Slips& s, doubl
     if (check.renewed || steady_distance_ >= longestPath(p_))
     {
       in_transient_ = false;  // its state is the steady one now
-      finer_.reset();
+      retire(finer_);
       probation_ = true;
       probation_travel_ = 0.0;
     }
@@ -421,7 +446,7 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
   {
     budget_cut_ = std::max(budget_cut_, transient_resolution_);
     transient_resolution_ /= 2;
-    finer_.reset();
+    retire(finer_);
     easy_travel_ = 0.0;
   }
   resolution = transient_resolution_;
@@ -435,7 +460,7 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
   // waits for the next entry into the transient model, and the estimate meanwhile says that the target is
   // missed.
   if (finer_ && finer_->predictWork(kin, dt) > remaining())
-    finer_.reset();  // the budget no longer carries both lattices
+    retire(finer_);  // the budget no longer carries both lattices
   if (finer_)
   {
     stepLattice(*finer_, 2 * resolution, kin, s, dt);
@@ -450,6 +475,7 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
       const double entry = entry_error_;
       out = fine;
       out.error_estimate += entry;
+      retire(transient_);
       transient_ = std::move(finer_);
       transient_resolution_ = resolution = 2 * resolution;
       if (transient_resolution_ >= budget_cut_)
@@ -476,7 +502,7 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
     const bool affordable = cost <= remaining();
     if (s.defined && affordable)
     {
-      finer_ = std::make_unique<BrushTransient>(withResolution(p_, finer));  // rare: it allocates
+      finer_ = latticeAt(finer);
       finer_travel_ = 0.0;
     }
     else if (!s.defined)

@@ -142,6 +142,28 @@ bool BrushTransient::setParameters(const BrushParameters& parameters)
   return lattice_changes;
 }
 
+void BrushTransient::renew(const BrushParameters& parameters)
+{
+  parameters.validate();
+  p_ = parameters;
+  // every member as the constructor leaves it; allocate() sizes the arrays within their storage and resets the rest
+  work_budget_ = kUnlimitedBudget;
+  stepping_ = TransientStepping::WholeStep;
+  work_ = 0;
+  last_steps_ = 0;
+  last_travel_ = 0.0;
+  streak_estimate_ = 0.0;
+  last_kin_ = ContactKinematics{};
+  *rows_ = TransientRows{};
+  allocate();
+}
+
+void BrushTransient::swapStorage(BrushTransient& other)
+{
+  auto theirs = other.perPointArrays();
+  perPointArrays().swap(theirs);  // a tuple of references: swaps what they refer to
+}
+
 void BrushTransient::rotateFrame(double alpha)
 {
   if (std::all_of(u_.begin(), u_.end(), [](const Eigen::Vector2d& u) { return u.isZero(0.0); }))
@@ -168,7 +190,7 @@ void BrushTransient::allocate()
 {
   const int n = p_.resolution;
   h_ = 2.0 * p_.a / n;
-  w_ = n + 6;  // the patch plus a margin: points shifted into the window are outside the patch
+  w_ = n + 6;  // the patch plus a margin: points shifted into the window are outside the patch (points())
   c0_ = 0.5 * (w_ - 1);
   const std::size_t size = static_cast<std::size_t>(w_) * w_;
   resizeState(size, false);

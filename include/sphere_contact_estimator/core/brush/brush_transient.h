@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <tuple>
 #include <vector>
 
 // Eigen
@@ -120,6 +121,15 @@ public:
   /// deflections stay meaningful under a new stiffness, load, friction, pressure or formulation, and the
   /// next substep applies the new bound. Returns true when the state had to be reset.
   bool setParameters(const BrushParameters& parameters);
+  /// The lattice BrushTransient(parameters) builds, in this one's storage: nothing is allocated where that is as large
+  /// (auto keeps a finer lattice it dropped for the next refinement; test_hot_path_allocations).
+  void renew(const BrushParameters& parameters);
+  /// The points the per-point arrays hold without allocating, and the points a lattice of `resolution` has.
+  std::size_t pointCapacity() const { return u_.capacity(); }
+  static std::size_t points(int resolution) { return static_cast<std::size_t>(resolution + 6) * (resolution + 6); }
+  /// Trades the per-point arrays' storage with `other`'s, for a lattice about to be resized (setParameters with another
+  /// resolution, renew), whose state is then reset: its contents are not meaningful until then, on either side.
+  void swapStorage(BrushTransient& other);
 
   void setStepping(TransientStepping stepping) { stepping_ = stepping; }
   TransientStepping stepping() const { return stepping_; }
@@ -190,6 +200,11 @@ private:
   Eigen::Vector2d rowStep() const { return h_ * R_.col(0); }
   void allocate();  // sizes the lattice for p_ and resets
   void resizeState(std::size_t size, bool scratch);  // the per-point arrays (or their scratch twins) to size points
+  auto perPointArrays()  // all of them, the scratch twins too
+  {
+    return std::tie(u_, jump_, inside_, sliding_, slip_travel_, step_error_, u_scratch_, jump_scratch_, inside_scratch_,
+                    sliding_scratch_, slip_travel_scratch_, step_error_scratch_);
+  }
   // without tilt: every bristle over the whole step along its straight path (lattice/bristle_advance.h); false where the
   // work budget cut the sliding steps short
   bool advanceWhole(const ContactKinematics& kin, double dt);
