@@ -99,6 +99,18 @@ bool OdometryEstimator::lookup(const tf2::BufferCore& tf, const std::string& tar
 {
   if (target.empty() || source.empty())
     return false;
+  // A frame tf has never seen (no tf in a bag, none published yet): said here, since canTransform composes its reason
+  // in new strings at every call, even when none is asked for (test_ros_hot_path_allocations); _frameExists only looks
+  // the name up.
+  for (const std::string* frame : { &target, &source })
+    if (!tf._frameExists(*frame))
+    {
+      char text[192];
+      std::snprintf(text, sizeof(text), "frame '%s' is not in tf (looking up '%s' in '%s')", frame->c_str(),
+                    source.c_str(), target.c_str());
+      last_tf_error_.assign(text);  // into the string's capacity: no allocation once sized
+      return false;
+    }
   try
   {
     if (tf.canTransform(target, source, stamp))
