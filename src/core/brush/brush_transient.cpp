@@ -190,9 +190,9 @@ void BrushTransient::allocate()
 {
   const int n = p_.resolution;
   h_ = 2.0 * p_.a / n;
-  w_ = n + 6;  // the patch plus a margin: points shifted into the window are outside the patch (points())
+  w_ = n + 6;  // the patch plus a margin: points shifted into the window are outside the patch
   c0_ = 0.5 * (w_ - 1);
-  const std::size_t size = static_cast<std::size_t>(w_) * w_;
+  const std::size_t size = points(n);  // w_ * w_
   resizeState(size, false);
   resizeState(size, true);
   reset();
