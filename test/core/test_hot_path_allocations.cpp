@@ -8,6 +8,7 @@
 
 // STL
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 #include <string>
@@ -106,9 +107,10 @@ std::vector<EstimatorInput> hostileStream(unsigned seed)
 }
 
 // Runs the stream twice through one estimator (the first pass sizes what is sized once) and returns the allocations
-// of the second pass, with the messages that allocated.
+// of the second pass, with the messages that allocated (and, given, how often the second pass changed the transient
+// lattice's resolution).
 long secondPassAllocations(const EstimatorSettings& settings, const std::vector<EstimatorInput>& stream,
-                           std::string& where)
+                           std::string& where, int* resolution_changes = nullptr)
 {
   ContactEstimator e(settings);
   for (const EstimatorInput& in : stream)
@@ -116,15 +118,22 @@ long secondPassAllocations(const EstimatorSettings& settings, const std::vector<
   const double offset = stream.back().stamp - stream.front().stamp + 10.0;  // on, not back: no reset at the start
   EstimatorInput in;
   long total = 0;
+  int last_resolution = 0;
   for (std::size_t i = 0; i < stream.size(); ++i)
   {
     in = stream[i];
     in.stamp += offset;
     long n;
+    const ContactEstimateData* d;
     {
       const AllocationCount count;
-      e.update(in);
+      d = e.update(in);
       n = count.count();
+    }
+    if (resolution_changes && d && d->brush_resolution > 0)
+    {
+      *resolution_changes += last_resolution > 0 && d->brush_resolution != last_resolution;
+      last_resolution = d->brush_resolution;
     }
     if (n > 0 && where.size() < 400)
       where += " message " + std::to_string(i) + ": " + std::to_string(n) + ";";
@@ -151,6 +160,22 @@ TEST(HotPath, TheDefaultSettingsAllocateNothingPerMessageAlongTheManoeuvre)
     EXPECT_EQ(secondPassAllocations(EstimatorSettings(), manoeuvreStream(rate, 7), where), 0)
         << rate << " Hz:" << where;
   }
+}
+
+TEST(HotPath, AutoRefiningOftenAllocatesNothingPerMessage)
+{
+  // a tight target, not raised to the noise, and the budget to reach it: auto refines and coarsens its lattice all
+  // along the manoeuvre (its finer lattices in the storage of those it dropped)
+  SCE_REQUIRE_ALLOCATION_COUNT();
+  EstimatorSettings s;
+  s.accuracy_target = 0.001;
+  s.auto_noise_fraction = 0.0;
+  s.work_budget = 1000000;
+  std::string where;
+  int changes = 0;
+  EXPECT_EQ(secondPassAllocations(s, manoeuvreStream(100.0, 9), where, &changes), 0) << where;
+  EXPECT_GE(changes, 2) << "the lattice hardly changed its resolution: the test shows little";
+  std::printf("%d changes of resolution in the second pass\n", changes);
 }
 
 TEST(HotPath, EveryModelAllocatesNothingPerMessage)
