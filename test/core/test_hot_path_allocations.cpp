@@ -36,7 +36,7 @@ using test::AllocationCount;
 // frame, as the node hands it to the estimator.
 std::vector<EstimatorInput> manoeuvreStream(double rate, unsigned seed)
 {
-  const double noise_v = 0.005, noise_w = 0.02;
+  const double noise_v = test::kManoeuvreNoiseVelocity, noise_w = test::kManoeuvreNoiseOmega;
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> g(0.0, 1.0);
   TwistCovariance C = TwistCovariance::Zero();
@@ -141,15 +141,6 @@ long secondPassAllocations(const EstimatorSettings& settings, const std::vector<
   }
   return total;
 }
-
-// Skips where the allocator is not ours to count (the sanitizers'); fails where it should be and is not seen.
-#define SCE_REQUIRE_ALLOCATION_COUNT()                                                                               \
-  do                                                                                                                 \
-  {                                                                                                                  \
-    if (!AllocationCount::enabled())                                                                                 \
-      GTEST_SKIP() << "the allocator is the sanitizer's here: allocations are not counted";                          \
-    ASSERT_TRUE(AllocationCount::counting()) << "the allocation count does not see an allocation";                   \
-  } while (false)
 
 TEST(HotPath, TheDefaultSettingsAllocateNothingPerMessageAlongTheManoeuvre)
 {

@@ -24,3 +24,14 @@ private:
   long start_;
 };
 }  // namespace sphere_contact_estimator::test
+
+/// In a gtest body: skips where the allocator is not this package's to count (the sanitizers'), and fails where it
+/// should be counted and an allocation is not seen.
+#define SCE_REQUIRE_ALLOCATION_COUNT()                                                                               \
+  do                                                                                                                 \
+  {                                                                                                                  \
+    if (!::sphere_contact_estimator::test::AllocationCount::enabled())                                               \
+      GTEST_SKIP() << "the allocator is the sanitizer's here: allocations are not counted";                          \
+    ASSERT_TRUE(::sphere_contact_estimator::test::AllocationCount::counting())                                       \
+        << "the allocation count does not see an allocation";                                                        \
+  } while (false)

@@ -8,6 +8,10 @@
 
 namespace sphere_contact_estimator::test
 {
+/// The sensor noise config/manoeuvre_scenario.yaml records with (the demo's): standard deviations of the contact
+/// centre's velocity [m/s] and of each angular velocity component [rad/s].
+constexpr double kManoeuvreNoiseVelocity = 0.005, kManoeuvreNoiseOmega = 0.02;
+
 /// The segments of config/manoeuvre_scenario.yaml (data/manoeuvre.bag, issue 21's robot stream): accelerate with the
 /// centre lagging, weave at 1 m/s with the shell spinning at 8 rad/s, slow, pivot at 0.3 m/s (12 rad/s), skid to a
 /// stop, spin in place, park (2 s here).

@@ -39,7 +39,7 @@ struct Recording
 Recording manoeuvre()
 {
   const sce::Scenario scenario(sce::test::manoeuvreSegments(), 0.1);
-  const double noise_v = 0.005, noise_w = 0.02;
+  const double noise_v = sce::test::kManoeuvreNoiseVelocity, noise_w = sce::test::kManoeuvreNoiseOmega;
   std::mt19937_64 rng(5);
   std::normal_distribution<double> g(0.0, 1.0);
   Recording r;
@@ -110,9 +110,7 @@ long secondPassAllocations(const sce::ContactEstimatorConfig& config, const Reco
 
 TEST(RosHotPath, ProcessingAnOdometryMessageAllocatesNothing)
 {
-  if (!sce::test::AllocationCount::enabled())
-    GTEST_SKIP() << "the allocator is the sanitizer's here: allocations are not counted";
-  ASSERT_TRUE(sce::test::AllocationCount::counting()) << "the allocation count does not see an allocation";
+  SCE_REQUIRE_ALLOCATION_COUNT();
   const Recording r = manoeuvre();
   const sce::ContactEstimatorConfig defaults = sce::ContactEstimatorConfig::__getDefault__();
   {
