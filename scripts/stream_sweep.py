@@ -11,7 +11,8 @@ below their error (both beyond the reference's own difference; and beyond its ow
 those between the two, against resolution 256 with its estimate as the slack), at the default target and at 0.1 %, and
 the work budget's heaviest messages.
 
-Usage: stream_sweep.py --bag-analyze PATH --dir FOLDER [--streams 24] [--seed 1000] [--out JSON]
+Usage: stream_sweep.py --bag-analyze PATH --dir FOLDER [--streams 24] [--seed 1000] [--set NAME=VALUE ...] [--out JSON]
+(--set: a parameter of every robot's file beyond the drawn ones, for the run and its references alike, e.g. tilt=true)
 """
 import argparse
 import json
@@ -78,13 +79,22 @@ def main():
     ap.add_argument("--dir", required=True, help="folder for the streams' bags, scenarios and parameter files")
     ap.add_argument("--streams", type=int, default=24)
     ap.add_argument("--seed", type=int, default=1000)
+    ap.add_argument("--set", nargs="+", default=[], metavar="NAME=VALUE",
+                    help="a parameter of every robot's file beyond the drawn ones (e.g. tilt=true)")
     ap.add_argument("--out", default=None)
     a = ap.parse_args()
+    fixed = {}
+    for item in a.set:
+        name, sep, value = item.partition("=")
+        if not sep or not name:
+            sys.exit("--set takes NAME=VALUE, not %r" % item)
+        fixed[name] = value
     os.makedirs(a.dir, exist_ok=True)
     streams = []
     for seed in range(a.seed, a.seed + a.streams):
         r = random.Random(seed)
         p = robot(r)
+        p.update(fixed)
         rate = r.choice([30, 100, 100, 100, 1000])
         files = {k: os.path.join(a.dir, "%s_%d.%s" % (k, seed, ext))
                  for k, ext in (("scenario", "yaml"), ("params", "yaml"), ("stream", "bag"), ("result", "json"))}

@@ -171,6 +171,7 @@ private:
   std::unique_ptr<SteadyLag> lag_;  // of the steady state behind the true one
   BrushForces steady_cache_;    // the steady model at this update's inputs, if stepLag evaluated it
   bool steady_cached_ = false;
+  bool steady_short_ = false;   // the steady family's last steady answer ran out of the budget before its target
   double linear_bound_ = 0.0;   // BrushLinear::errorBound at this update's inputs
   Eigen::Vector2d last_lag_sigma_ = Eigen::Vector2d::Zero();  // the slips and spin of the last lag step
   double last_lag_phi_ = 0.0;

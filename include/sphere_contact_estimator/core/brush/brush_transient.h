@@ -178,7 +178,7 @@ public:
   long predictWork(const ContactKinematics& kinematics, double dt) const;
   /// The same for a lattice of twice the resolution that has rolled as this one (for auto's refinement): without tilt
   /// four times the points and the sums, and the sliding steps four times as many bristles take at a tolerance a
-  /// quarter of this one's (kFinerSteps); with tilt, substeps, eight times this one's (points times substeps).
+  /// quarter of this one's (kFinerSteps); with tilt, substeps, its own substeps over its own window.
   long predictFinerWork(const ContactKinematics& kinematics, double dt) const;
   /// A finer lattice's sliding steps over this one's: four times the bristles, each step's tolerance a quarter
   /// (kTimeTolerance over resolution^2), which the steps' controller (exponent 1/4 to 1/5 of the estimate's ratio)
@@ -310,6 +310,7 @@ private:
   TransientStepping stepping_ = TransientStepping::WholeStep;
   long work_ = 0;                 // of the update under way
   int substeps(const ContactKinematics& kin, double dt) const;  // how many the step takes
+  int substepsAt(const ContactKinematics& kin, double dt, double h) const;  // the same at spacing h
   double h_;                      // lattice spacing
   int w_;                         // window width in lattice points
   double c0_;                     // lattice coordinate of the window centre, in spacings
