@@ -509,12 +509,11 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
     // without tilt four to five times this one's step, with tilt its own substeps); else eight times this one's step, a
     // reserve kept from the substeps' lattice (points times substeps): a lattice its own estimate coarsened (an eighth
     // of the target) comes back only with room to spare, as before, since its estimate may be as far below the finer
-    // one's as that (a
-    // random robot of the sweep, seed 1253, rolling at 1.5 m/s: 0.035 at 16 against 0.0045 at 32, a target of 0.04;
-    // at four to five times it went back and forth between 16 and 32 every few messages). With eight times after a
-    // budget cut too, that robot, coarsened to 16 by a weave it could not afford at 32, stayed at 16 through the roll
-    // after it (1 s), flagged at 89 of 101 messages with estimates up to four times the target, while 32 needed about
-    // a third of the budget there (docs/speed_and_accuracy.md).
+    // one's as that (a random robot of the sweep, seed 1253, rolling at 1.5 m/s: 0.035 at 16 against 0.0045 at 32, a
+    // target of 0.04; at four to five times it went back and forth between 16 and 32 every few messages). With eight
+    // times after a budget cut too, that robot, coarsened to 16 by a weave it could not afford at 32, stayed at 16
+    // through the roll after it (1 s), flagged at 89 of 101 messages with estimates up to four times the target, while
+    // 32 needed about a third of the budget there (docs/speed_and_accuracy.md).
     const long cost =
         finer <= budget_cut_ ? transient_->predictFinerWork(kin, dt) : 8 * transient_->predictWork(kin, dt);
     const bool affordable = cost <= remaining();

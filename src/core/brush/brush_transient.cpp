@@ -190,7 +190,7 @@ void BrushTransient::allocate()
 {
   const int n = p_.resolution;
   h_ = 2.0 * p_.a / n;
-  w_ = n + 6;  // the patch plus a margin: points shifted into the window are outside the patch
+  w_ = windowWidth(n);
   c0_ = 0.5 * (w_ - 1);
   const std::size_t size = points(n);  // w_ * w_
   resizeState(size, false);
@@ -226,7 +226,7 @@ bool BrushTransient::coarsen()
   o_ += R_ * Eigen::Vector2d(0.5 * h_, 0.5 * h_);
   p_.resolution = n / 2;
   h_ = 2.0 * p_.a / p_.resolution;
-  w_ = p_.resolution + 6;
+  w_ = windowWidth(p_.resolution);
   c0_ = 0.5 * (w_ - 1);
   const std::size_t size = static_cast<std::size_t>(w_) * w_;
   resizeState(size, false);  // the scratch arrays still hold the fine state
@@ -389,23 +389,20 @@ long BrushTransient::predictWork(const ContactKinematics& kin, double dt) const
     return static_cast<long>(w_) * w_ * kBristleWork + sumsWork() +
            static_cast<long>(predictSteps(kin, dt)) * kStepWork;
   }
-  const int n = dt > 0.0 ? substeps(kin, dt) : 0;
-  return static_cast<long>(n < 0 ? kMaxSubsteps : n) * kPointWork * w_ * w_ + sumsWork();
+  return substepsWork(dt > 0.0 ? substeps(kin, dt) : 0, w_);
 }
 
 long BrushTransient::predictFinerWork(const ContactKinematics& kin, double dt) const
 {
   if (!p_.tilt && stepping_ == TransientStepping::WholeStep)
   {
-    const long w = 2L * w_;  // (the finer window is 2 n + 6 points wide: a little less)
+    const long w = 2L * w_;  // (the finer window, windowWidth(2 n), is a little less)
     return w * w * (kBristleWork + kSumWork) + static_cast<long>(kFinerSteps * predictSteps(kin, dt)) * kStepWork;
   }
   // substeps (tilt): the finer lattice's own count (about twice this one's: half the spacing) over its window, as
   // predictWork counts them (8 times this one's prediction was 1.7 times a 16's step at 8, 66 k units against 39 k: a
   // lattice the budget had cut to 8 never came back)
-  const int n = dt > 0.0 ? substepsAt(kin, dt, 0.5 * h_) : 0;
-  const long w = 2L * p_.resolution + 6;
-  return static_cast<long>(n < 0 ? kMaxSubsteps : n) * kPointWork * w * w + w * w * kSumWork;
+  return substepsWork(dt > 0.0 ? substepsAt(kin, dt, 0.5 * h_) : 0, windowWidth(2 * p_.resolution));
 }
 
 bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)

@@ -126,7 +126,12 @@ public:
   void renew(const BrushParameters& parameters);
   /// The points the per-point arrays hold without allocating, and the points a lattice of `resolution` has.
   std::size_t pointCapacity() const { return u_.capacity(); }
-  static std::size_t points(int resolution) { return static_cast<std::size_t>(resolution + 6) * (resolution + 6); }
+  static std::size_t points(int resolution)
+  {
+    return static_cast<std::size_t>(windowWidth(resolution)) * windowWidth(resolution);
+  }
+  /// The window's width in points: the patch plus a margin (points shifted into the window are outside the patch).
+  static int windowWidth(int resolution) { return resolution + 6; }
   /// Trades the per-point arrays' storage with `other`'s, for a lattice about to be resized (setParameters with another
   /// resolution, renew), whose state is then reset: its contents are not meaningful until then, on either side.
   void swapStorage(BrushTransient& other);
@@ -253,6 +258,9 @@ private:
   // sub-lattices' largest spread from the full sum (spread).
   BrushForces sums(double& fixed, double& spread) const;
   long sumsWork() const { return static_cast<long>(w_) * w_ * kSumWork; }  // what sums() counts
+  // what a step by n substeps (-1: beyond kMaxSubsteps) counts over a window w points wide: every point at each, and the
+  // sums
+  static long substepsWork(int n, long w) { return (n < 0 ? kMaxSubsteps : n) * kPointWork * w * w + w * w * kSumWork; }
   // 2 covered the envelope's random noisy histories (test_brush_transient), but at the default robot's parameters (a =
   // 1 cm, k = 2e8 N/m^3, 49 N, mu 0.8: an adhesion zone over most of the patch, a thin sliding crescent) at resolution
   // 32, against 256, the error passed the estimate (beyond the reference's own) at 4 of 13 200 messages of random noisy
