@@ -955,5 +955,25 @@ TEST(BrushTransient, CoarseningKeepsEveryOtherBristle)
   EXPECT_EQ(coarse.lastResolution(), BrushTransient::kMinCoarsened);
 }
 
+TEST(BrushTransient, ACoarsenedLatticePredictsItsOwnStep)
+{
+  // auto coarsens a lattice whose predicted step does not fit the budget, and again while the coarser one's does not:
+  // that prediction must be of the coarser lattice's sliding steps, not the finer one's. Fig. 4's 10-ms message at
+  // 1 m/s under eq. (4b): rolled at 32, then halved, its prediction before its first step against the one its own
+  // steps then give. (Before, the finer lattice's steps were kept: 19.8 k units against 7.7 k, and sweep seed 1253,
+  // whose step at 32 did not fit, was cut to 8 where 16 fitted.)
+  BrushTransient fine(test::figure4Parameters(false, 32));
+  const ContactKinematics k = ContactKinematics::fromSlips({ 0.05, 0.02 }, 3.33, 1.0, 1.0);
+  for (int i = 0; i < 12; ++i)
+    fine.update(k, 0.01);
+  BrushTransient coarse = fine;
+  ASSERT_TRUE(coarse.coarsen());
+  const long predicted = coarse.predictWork(k, 0.01);
+  coarse.update(k, 0.01);
+  const long own = coarse.predictWork(k, 0.01);
+  std::printf("coarsened 32 -> 16: predicted %ld units before its first step, %ld after it\n", predicted, own);
+  EXPECT_LT(std::abs(predicted - own), own / 4);
+}
+
 }  // namespace
 }  // namespace sphere_contact_estimator

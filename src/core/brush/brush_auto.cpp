@@ -336,13 +336,15 @@ BrushAuto::SteadyCheck BrushAuto::checkSteady(const ContactKinematics& kin, cons
   // own estimate, two messages after leaving).
   const double stride = have_check_ && last_check_.lag > kFarLag * kLeavingLag * target ? kFarLagStride : kLagStride;
   // (at most half of what is left: the answer's model needs the rest; in the transient model, what its lattices'
-  // predicted steps leave, where that is less: check_work_)
+  // predicted steps leave, where that is less, less the steady solver's granularity, the path under way when it runs out:
+  // a check that passed its room by 56 units left the lattice's predicted step 56 units short of what remained, and the
+  // lattice was coarsened, test_brush_auto's pivot at 0.1 %; check_work_)
   long check_room = std::min(BrushSteady::kMaxWork, remaining() / 2);
   const bool evaluates = lagNeedsSteady(c.steady, target);
   if (in_transient_ && evaluates && !c.renewed)
   {
     const long lattices = transient_->predictWork(kin, dt) + (finer_ ? finer_->predictWork(kin, dt) : 0);
-    check_room = std::min(check_room, remaining() - lattices);
+    check_room = std::min(check_room, remaining() - lattices - kWorkGranularity);
   }
   const double since = lag_travel_ + s.V_r * dt;
   // (waiting for room for a transit at most: a check that ran out of half of what was left would otherwise wait for

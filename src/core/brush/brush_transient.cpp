@@ -248,6 +248,10 @@ bool BrushTransient::coarsen()
   resizeState(size, true);
   rows_->reset();  // the rows moved: the control variate is evaluated again
   clearSpreadWindow();  // the spreads were of the finer lattice
+  // the sliding steps this lattice is predicted to take, as predictFinerWork relates a finer lattice's to its own (the
+  // finer lattice's count had made this one's step look four times as dear: sweep seed 1253, its step not fitting at
+  // 32, was cut to 8 where 16 fitted)
+  last_steps_ = static_cast<long>(static_cast<double>(last_steps_) / kFinerSteps);
   recentre();
   return true;
 }
