@@ -20,6 +20,8 @@ namespace
 // bound's shape (nearRim); up to it Simpson's rule stands, the trapezoid's difference above its error (at half the
 // distance to a pole 1 / (rho - s), 0.014 against 0.0013 of the integral's 0.69)
 constexpr double kRimNear = 0.5;
+// A step with pull |w| / b times its length above this is stiff: the Magnus series' reach (it converges below pi)
+constexpr double kStiffPull = 3.0;
 }  // namespace
 
 double BristleAdvance::coulombSlideStill(BristleState& s, const Eigen::Vector2d& x, double span) const
@@ -255,6 +257,11 @@ private:
     double tau = 0.0;  // travel from the piece's start
     double step;       // the next step's length
     bool to_event = false;  // a re-adhesion was located in a step: the step to it is being taken
+    // An exponential step's estimate was above the tolerance along this piece. Over a stiff step its error is the lag's
+    // change across the kernel's width 1 / lambda, which a shorter step barely reduces (cut to a fifth, the retries
+    // failed again and again: 514 of 691 stiff tries at resolution 64 on Fig. 4's message): later steps stay within the
+    // Magnus step's reach instead.
+    bool exponential_failed = false;
     // the point at the end of an accepted step is the next one's start: kept, not evaluated again
     Point known;
     double known_tau = 0.0;
@@ -319,8 +326,15 @@ inline double BristleAdvance::CoulombSlide::run()
     const double b_min = std::min(q0.b, q1.b);
     const double w0 = q0.w.norm(), w1 = q1.w.norm();
     const double pull = std::max(w0, w1) / std::max(b_min, 1e-300);
+    // (a shorter step's pull is no larger: |w| is convex and the bound unimodal along a straight path; where the bound
+    // vanishes at the start, as at the rim, the stiff step's own kinds)
+    if (walk.exponential_failed && pull * d > kStiffPull && 0.97 * kStiffPull / pull > 0.01 * d)
+    {
+      walk.step = 0.97 * kStiffPull / pull;
+      continue;
+    }
     ++steps_;
-    bool stiff_step = pull * d > 3.0;
+    bool stiff_step = pull * d > kStiffPull;
     const double un = s_.u.norm();
     // (on the rim the bound, and u, vanish: the drive's direction)
     const Eigen::Vector2d e0 = un > 0.0 ? Eigen::Vector2d(s_.u / un)
@@ -507,6 +521,7 @@ inline bool BristleAdvance::CoulombSlide::stiff(Walk& walk, const Point& q0, con
     }
     if (x.pushed && d > 1e-9 * span_)
     {
+      walk.exponential_failed = true;
       walk.step = d * std::max(0.2, 0.9 * std::sqrt(a_.tolerance_ / x.error));
       return false;
     }
