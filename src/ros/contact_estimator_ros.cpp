@@ -397,7 +397,7 @@ void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWra
   {
     char worst[32];
     std::snprintf(worst, sizeof worst, "%.3g", accuracy_missed_.worst);
-    const std::string text = "accuracy target missed within the work budget in " +
+    const std::string text = "accuracy target missed in " +
                              std::to_string(accuracy_missed_.count) + " of " + std::to_string(since_report_) +
                              " estimates (error estimate up to " + worst +
                              " times the target: BRUSH_FLAG_ACCURACY_NOT_MET)";

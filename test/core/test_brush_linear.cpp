@@ -117,6 +117,27 @@ TEST(BrushLinear, AnyRollingDirection)
   }
 }
 
+TEST(BrushLinear, AnAnswerWhoseBoundPassesTheTargetIsFlagged)
+{
+  // the linear theory's error bound (errorBound) is its estimate: where it passes accuracy_target the answer says so,
+  // as every model's does (BRUSH_FLAG_ACCURACY_NOT_MET); below it, not (before, the linear answers never were)
+  BrushParameters p = test::figure4Parameters();
+  p.accuracy_target = 1e-3;
+  BrushLinear model(p);
+  int flagged = 0, answers = 0;
+  for (double slip : { 1e-5, 1e-4, 1e-3, 3e-3, 1e-2, 0.05 })
+    for (double spin : { 0.0, 0.3, 3.0 })
+    {
+      const BrushForces f = model.update(ContactKinematics::fromSlips({ slip, 0.5 * slip }, spin, 1.0, 1.0), 0.01);
+      EXPECT_EQ(f.error_estimate > p.accuracy_target, (f.flags & brush_flags::kAccuracyNotMet) != 0)
+          << "slip " << slip << ", spin " << spin << ": estimate " << f.error_estimate;
+      flagged += (f.flags & brush_flags::kAccuracyNotMet) != 0;
+      ++answers;
+    }
+  EXPECT_GT(flagged, 0);
+  EXPECT_LT(flagged, answers);
+}
+
 TEST(BrushLinear, SaturatesOnTheFrictionCircle)
 {
   BrushLinear linear(figure4Parameters());

@@ -15,7 +15,8 @@ std::vector<std::string> describe(std::uint32_t flags)
     out.emplace_back("linear model beyond the friction limit: |F_t| scaled back to mu F_z; the linear theory "
                      "assumes vanishing sliding, use the steady or transient model");
   if (flags & kAccuracyNotMet)
-    out.emplace_back("the accuracy target was not met within the evaluation budget: see error_estimate");
+    out.emplace_back("the error estimate is above the accuracy target (within the work budget, or at the model's own "
+                     "limit: a fixed transient resolution, the linear theory): see error_estimate");
   if (flags & kSubstepsTruncated)
     out.emplace_back("transient step longer than the substep budget: integrated with coarser substeps");
   if (flags & kModelFault)

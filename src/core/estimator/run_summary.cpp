@@ -81,8 +81,8 @@ std::string RunSummary::report() const
   if (accuracy_.count > 0)
   {
     std::snprintf(buffer, sizeof(buffer),
-                  "  brush accuracy        target missed within the work budget at %llu estimates (%.1f %%; error "
-                  "estimate up to %.3g times it: BRUSH_FLAG_ACCURACY_NOT_MET)\n",
+                  "  brush accuracy        target missed at %llu estimates (%.1f %%; error estimate up to %.3g times it: "
+                  "BRUSH_FLAG_ACCURACY_NOT_MET)\n",
                   static_cast<unsigned long long>(accuracy_.count), share(accuracy_.count), accuracy_.worst);
     out += buffer;
   }

@@ -14,7 +14,7 @@ constexpr std::uint32_t kStandstill = 1u << 0;           ///< V_r below the stan
 constexpr std::uint32_t kNoSteadyStateTilt = 1u << 1;    ///< |R_gamma| < a: no steady state on an inner disc (Fig. 2)
 constexpr std::uint32_t kLinearSaturated = 1u << 2;      ///< linear model beyond mu F_z: force scaled back
 constexpr std::uint32_t kSubstepsTruncated = 1u << 3;    ///< transient: step too long, fewer substeps than accuracy wants
-constexpr std::uint32_t kAccuracyNotMet = 1u << 4;       ///< error_estimate above the accuracy target (budget spent)
+constexpr std::uint32_t kAccuracyNotMet = 1u << 4;       ///< error_estimate above the accuracy target (every model)
 /// The model failed (threw: a defect, not an input it refuses): no forces (zero), the model's state reset;
 /// ContactEstimator::lastFault says what.
 constexpr std::uint32_t kModelFault = 1u << 5;
