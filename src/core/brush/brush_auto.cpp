@@ -297,10 +297,8 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
   }
   carryAcrossSwitches(out, s, sigma, frame, dt, before, before_resolution, model, resolution);
   out.flags &= ~brush_flags::kLinearSaturated;  // auto never publishes a saturated linear answer as such
-  if (out.error_estimate > target)
-    out.flags |= brush_flags::kAccuracyNotMet;
-  else
-    out.flags &= ~brush_flags::kAccuracyNotMet;
+  out.flags &= ~brush_flags::kAccuracyNotMet;  // (its lattice's, against the configured target)
+  out.flagAbove(target);
   last_model_ = model;
   last_resolution_ = resolution;
   answered_ = true;

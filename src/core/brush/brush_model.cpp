@@ -71,9 +71,7 @@ BrushForces BrushSlipModel::update(const ContactKinematics& kin, double dt)
   const RollingFrame frame(s.epsilon);
   BrushForces f = evaluate(frame.toRolling(s.sigma), s.phi, s.phi_gamma, s.phi_psi);
   frame.forcesToPatch(f);
-  // the linear model's bound above the target is a target missed as much as the steady solver's estimate
-  if (f.error_estimate > p_.accuracy_target)
-    f.flags |= brush_flags::kAccuracyNotMet;
+  f.flagAbove(p_.accuracy_target);  // (the linear model's bound too)
   return f;
 }
 

@@ -361,10 +361,7 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   f.sliding_fraction = g.sliding_fraction;
   f.max_utilisation = g.max_utilisation;
   f.error_estimate = estimate(fixed, spread) + (short_of_work ? 2.0 : 0.0);
-  // at a fixed resolution the lattice's estimate may exceed the target: said, as every model says it (auto sets the
-  // flag against its own target)
-  if (f.error_estimate > p_.accuracy_target)
-    f.flags |= brush_flags::kAccuracyNotMet;
+  f.flagAbove(p_.accuracy_target);  // (at a fixed resolution; auto flags its answers against its own target)
   work_ += sumsWork();
   f.work = work_;
   return f;

@@ -41,6 +41,13 @@ struct BrushForces
   long work = 0;
 
   bool valid() const { return (flags & brush_flags::kInvalidatingFlags) == 0; }
+  /// kAccuracyNotMet where the estimate passes `target`, what the flag says for every model (it only sets it: the steady
+  /// solver also sets it where its integral did not converge)
+  void flagAbove(double target)
+  {
+    if (error_estimate > target)
+      flags |= brush_flags::kAccuracyNotMet;
+  }
 };
 
 }  // namespace sphere_contact_estimator
