@@ -111,8 +111,20 @@ void ContactEstimatorRos::reconfigureCallback(ContactEstimatorConfig& config, ui
   }
   catch (const std::exception& e)
   {
-    ROS_ERROR_STREAM("contact estimator: configuration rejected (" << describeChanges(changes) << "): " << e.what()
-                                                                   << "; the previous one stays in force");
+    // At start-up "the previous one" is the .cfg's defaults: none of the user's parameters is in force, which the
+    // diagnostics then say as an ERROR until a configuration is accepted (a line scrolled past in roslaunch's output
+    // was all a user had)
+    const bool at_start = !configured_;
+    ROS_ERROR_STREAM("contact estimator: configuration rejected ("
+                     << describeChanges(changes) << "): " << e.what()
+                     << (at_start ? "; at start-up: none of the parameters is in force, the defaults of "
+                                    "cfg/ContactEstimator.cfg are, until a configuration is accepted"
+                                  : "; the previous one stays in force"));
+    if (at_start)
+    {
+      std::lock_guard<std::mutex> stats(stats_mutex_);
+      rejected_at_start_ = e.what();
+    }
     config = config_;  // the server publishes what is in force
     return;
   }
@@ -121,6 +133,7 @@ void ContactEstimatorRos::reconfigureCallback(ContactEstimatorConfig& config, ui
   config_ = config;
   {
     std::lock_guard<std::mutex> stats(stats_mutex_);
+    rejected_at_start_.clear();
     stale_timeout_ = config.stale_timeout;
     uncertainty_warning_ = config.uncertainty_warning;
     ground_frame_ = estimator_.groundFrame();
@@ -358,6 +371,17 @@ void ContactEstimatorRos::diagnoseTf(diagnostic_updater::DiagnosticStatusWrapper
 void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWrapper& status)
 {
   std::lock_guard<std::mutex> lock(stats_mutex_);
+  if (!rejected_at_start_.empty())
+  {
+    // the models run on the defaults, not on the robot's parameters: that first, whatever else holds
+    status.add("parameters rejected at start-up", rejected_at_start_);
+    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR,
+                   "the parameters were rejected at start-up, the defaults are in force: " + rejected_at_start_);
+    accuracy_missed_ = {};
+    within_noise_ = 0;
+    since_report_ = 0;
+    return;
+  }
   if (!have_estimate_ && faults_ == reported_faults_)
   {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "no estimate yet");
@@ -400,7 +424,12 @@ void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWra
     const std::string text = "accuracy target missed in " +
                              std::to_string(accuracy_missed_.count) + " of " + std::to_string(since_report_) +
                              " estimates (error estimate up to " + worst +
-                             " times the target: BRUSH_FLAG_ACCURACY_NOT_MET)";
+                             " times the target: BRUSH_FLAG_ACCURACY_NOT_MET)" +
+                             (accuracy_missed_.cut_short > 0
+                                  ? ", of them cut short by the work budget in " +
+                                        std::to_string(accuracy_missed_.cut_short) +
+                                        " (BRUSH_FLAG_SUBSTEPS_TRUNCATED: a larger work_budget buys them)"
+                                  : std::string());
     notes = notes.empty() ? text : notes + "; " + text;
   }
   accuracy_missed_ = {};

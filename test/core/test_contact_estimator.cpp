@@ -2,11 +2,13 @@
 // configuration.
 
 // STL
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <random>
 #include <stdexcept>
+#include <string>
 
 // GTest
 #include <gtest/gtest.h>
@@ -14,6 +16,7 @@
 // Package
 #include "sphere_contact_estimator/core/brush/brush_auto.h"
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
+#include "sphere_contact_estimator/core/brush/brush_transient.h"
 #include "sphere_contact_estimator/core/estimator/contact_estimator.h"
 #include "sphere_contact_estimator/core/estimator/paper_frame.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_exact.h"
@@ -538,55 +541,107 @@ TEST(ContactEstimator, ConfigureKeepsOrRejects)
   EXPECT_EQ(d->patch_radius, 0.021);
 }
 
-// The one place the paper/ROS sign flips live: an involution, and the paper's V_r = (-omega_y, omega_x) R_r is
-// REP 103's (omega_y R_r, -omega_x R_r) seen in the paper frame (docs/conventions.md).
 TEST(ContactEstimator, TheWorkBudgetBoundsEveryMessage)
 {
-  // Random hostile streams through the default estimator (auto, the twist's covariance propagated): speeds from
-  // standstill to 3 m/s, slips and spins that jump, stamps that jitter, stall and leap; at budgets from the smallest to
-  // plenty. Every message's counted work (the covariance's sigma points and the brush model) stays within the budget;
-  // every miss of the target is flagged; nothing is lost to a NaN.
+  // Random hostile streams through every brush model (auto, the default; the transient model at its fixed resolution,
+  // with tilt its substeps; the steady and the linear), the twist's covariance propagated: speeds from standstill to
+  // 3 m/s, slips and spins that jump, stamps that jitter, stall and leap; at budgets from the least the settings take
+  // to plenty. Every message's counted work (the covariance's sigma points and the brush model) stays within the
+  // budget; every miss of the target is flagged; nothing is lost to a NaN. (The transient model at a fixed resolution
+  // was not bound before: up to 1.14e6 units in a message at the default budget, sweep seed 8008.)
   std::mt19937_64 rng(31);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  int messages = 0, flagged = 0, jacobian = 0;
-  for (long budget : { EstimatorSettings::kMinWorkBudget, 40000L, EstimatorSettings::kDefaultWorkBudget })
-    for (int run = 0; run < 4; ++run)
-    {
-      EstimatorSettings s;
-      s.work_budget = budget;
-      s.accuracy_target = std::pow(10.0, -1.0 - 2.0 * u(rng));
-      s.tilt = run % 2;
-      ContactEstimator e(s);
-      double t = 0.0, yaw = 0.0;
-      for (int i = 0; i < 150; ++i)
+  int messages = 0, flagged = 0, jacobian = 0, cut = 0;
+  for (BrushModelKind model :
+       { BrushModelKind::Auto, BrushModelKind::Transient, BrushModelKind::Steady, BrushModelKind::Linear })
+    for (long budget : { EstimatorSettings::kMinWorkBudget, 40000L, EstimatorSettings::kDefaultWorkBudget })
+      for (int run = 0; run < (model == BrushModelKind::Auto ? 4 : 2); ++run)
       {
-        t += u(rng) < 0.05 ? 0.3 * u(rng) : 0.001 + 0.02 * u(rng);
-        const double v = u(rng) < 0.1 ? 0.01 * u(rng) : 3.0 * u(rng);
-        yaw += 0.2 * (2.0 * u(rng) - 1.0);
-        EstimatorInput in = rolling(t, v, yaw, 0.3 * v * (2.0 * u(rng) - 1.0), 0.2 * v * (2.0 * u(rng) - 1.0),
-                                    15.0 * (2.0 * u(rng) - 1.0));
-        in.twist_covariance = TwistCovariance::Identity() * std::pow(10.0, -6.0 + 4.0 * u(rng));
-        in.twist_covariance(2, 2) = 0.0;
-        const ContactEstimateData* d = e.update(in);
-        ASSERT_NE(d, nullptr);
-        ++messages;
-        EXPECT_LE(d->work, budget) << "budget " << budget << " run " << run << " message " << i;
-        EXPECT_TRUE(std::isfinite(d->brush.F_x) && std::isfinite(d->brush.F_y) && std::isfinite(d->brush.M_z));
-        EXPECT_TRUE(std::isfinite(d->brush.error_estimate));
-        if (d->brush.error_estimate > d->brush_target)
+        EstimatorSettings s;
+        s.brush_model = model;
+        s.accuracy_target = std::pow(10.0, -1.0 - 2.0 * u(rng));
+        s.tilt = run % 2;
+        s.resolution = model == BrushModelKind::Transient ? 16 : 32;
+        s.work_budget = std::max(budget, s.leastWorkBudget());
+        ContactEstimator e(s);
+        double t = 0.0, yaw = 0.0;
+        for (int i = 0; i < 150; ++i)
         {
-          EXPECT_TRUE(d->brush.flags & brush_flags::kAccuracyNotMet) << "message " << i;
-          ++flagged;
+          t += u(rng) < 0.05 ? 0.3 * u(rng) : 0.001 + 0.02 * u(rng);
+          const double v = u(rng) < 0.1 ? 0.01 * u(rng) : 3.0 * u(rng);
+          yaw += 0.2 * (2.0 * u(rng) - 1.0);
+          EstimatorInput in = rolling(t, v, yaw, 0.3 * v * (2.0 * u(rng) - 1.0), 0.2 * v * (2.0 * u(rng) - 1.0),
+                                      15.0 * (2.0 * u(rng) - 1.0));
+          in.twist_covariance = TwistCovariance::Identity() * std::pow(10.0, -6.0 + 4.0 * u(rng));
+          in.twist_covariance(2, 2) = 0.0;
+          const ContactEstimateData* d = e.update(in);
+          ASSERT_NE(d, nullptr);
+          ++messages;
+          EXPECT_LE(d->work, s.work_budget) << "model " << toString(model) << ", budget " << s.work_budget << " run "
+                                            << run << " message " << i;
+          EXPECT_TRUE(std::isfinite(d->brush.F_x) && std::isfinite(d->brush.F_y) && std::isfinite(d->brush.M_z));
+          EXPECT_TRUE(std::isfinite(d->brush.error_estimate));
+          if (d->brush.error_estimate > d->brush_target)
+          {
+            EXPECT_TRUE(d->brush.flags & brush_flags::kAccuracyNotMet) << "message " << i;
+            ++flagged;
+          }
+          cut += model == BrushModelKind::Transient && (d->brush.flags & brush_flags::kSubstepsTruncated);
+          jacobian += d->covariance.brush_method == CovarianceMethod::Jacobian;
         }
-        jacobian += d->covariance.brush_method == CovarianceMethod::Jacobian;
+        // a model's exception is caught and flagged (kModelFault): here it must not happen at all
+        EXPECT_EQ(e.faults(), 0u) << "budget " << budget << " run " << run << ": " << e.lastFault();
       }
-      // a model's exception is caught and flagged (kModelFault): here it must not happen at all
-      EXPECT_EQ(e.faults(), 0u) << "budget " << budget << " run " << run << ": " << e.lastFault();
-    }
-  std::printf("work budget: %d messages, %d flagged, %d with the linear Jacobian for the covariance\n", messages,
-              flagged, jacobian);
+  std::printf("work budget: %d messages, %d flagged, %d with the linear Jacobian for the covariance, %d of the fixed "
+              "lattice's cut short\n", messages, flagged, jacobian, cut);
+  EXPECT_GT(cut, 0) << "no fixed lattice's update was cut short: the bound was not tried on it";
 }
 
+TEST(ContactEstimator, ABudgetThatCannotPayForTheFixedLatticeIsRejected)
+{
+  // The transient model at a fixed resolution is bound by work_budget like every model; a budget below its lattice's
+  // least update (with tilt one substep) beside the covariance's share is a clear error naming both, not an update
+  // that passes the budget or a lattice that never moves. The least is accepted; auto, which adapts its lattice, takes
+  // the smallest budget at any resolution.
+  for (bool tilt : { false, true })
+    for (int resolution : { 32, 64, 128 })
+    {
+      EstimatorSettings s;
+      s.brush_model = BrushModelKind::Transient;
+      s.tilt = tilt;
+      s.resolution = resolution;
+      const long least = s.leastWorkBudget();
+      const long lattice = BrushTransient::leastUpdateWork(resolution, tilt);
+      EXPECT_GE(static_cast<double>(least) * (1.0 - EstimatorSettings::kCovarianceShare), static_cast<double>(lattice));
+      s.work_budget = least;
+      EXPECT_NO_THROW(s.validate());
+      s.work_budget = least - 1;
+      try
+      {
+        s.validate();
+        ADD_FAILURE() << "a budget below the least was accepted at " << resolution;
+      }
+      catch (const std::invalid_argument& e)
+      {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("work_budget"), std::string::npos) << what;
+        EXPECT_NE(what.find("resolution " + std::to_string(resolution)), std::string::npos) << what;
+        EXPECT_NE(what.find(std::to_string(least)), std::string::npos) << what;
+      }
+      s.brush_model = BrushModelKind::Auto;
+      s.work_budget = EstimatorSettings::kMinWorkBudget;
+      EXPECT_NO_THROW(s.validate());
+    }
+  // the default budget pays for the default resolution's fixed lattice with and without tilt
+  EstimatorSettings s;
+  s.brush_model = BrushModelKind::Transient;
+  EXPECT_NO_THROW(s.validate());
+  s.tilt = true;
+  EXPECT_NO_THROW(s.validate());
+}
+
+// The one place the paper/ROS sign flips live: an involution, and the paper's V_r = (-omega_y, omega_x) R_r is
+// REP 103's (omega_y R_r, -omega_x R_r) seen in the paper frame (docs/conventions.md).
 TEST(PaperFrame, FlipsAreOneInvolutionThatMatchesTheRollingVelocity)
 {
   std::mt19937 rng(3);

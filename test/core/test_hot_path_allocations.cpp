@@ -182,7 +182,7 @@ TEST(HotPath, EveryModelAllocatesNothingPerMessage)
         s.brush_model = brush;
         s.sliding_law = law;
         s.tilt = tilt;
-        s.resolution = 16;  // the transient model at its own resolution, not bound by the budget: kept short
+        s.resolution = 16;  // the transient model at its own resolution: kept short
         std::string where;
         EXPECT_EQ(secondPassAllocations(s, stream, where), 0)
             << "brush model " << static_cast<int>(brush) << ", law " << static_cast<int>(law) << ", tilt " << tilt

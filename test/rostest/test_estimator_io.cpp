@@ -490,6 +490,7 @@ TEST_F(EstimatorIo, ABurstBeyondTheQueueIsCountedAsDropped)
   ASSERT_TRUE(reconfigure([](sce::ContactEstimatorConfig& c) {
     c.brush_model = 3;  // transient on a fine lattice: about a millisecond a message
     c.resolution = 128;
+    c.work_budget = 1000000000;  // (the default cannot pay for this lattice: EstimatorSettings::leastWorkBudget)
   }));
   // one message first: the node knows this publisher's sequence from here on
   odom_pub_.publish(odometry(g_clock, 1.0, 0.0, 0.05, 0.0, 0.0));
@@ -572,6 +573,7 @@ TEST_F(EstimatorIo, DiagnosticsDoNotWaitForALongUpdate)
     c.brush_model = 3;
     c.resolution = 256;
     c.tilt = true;  // the lattice's substeps (without tilt every bristle takes the step whole: tens of ms)
+    c.work_budget = 1000000000;  // all of them (about 9e8 units)
   }));
   odom_pub_.publish(odometry(g_clock, 1.0, 0.0, 0.05, 0.0, 0.0));
   ASSERT_TRUE(waitFor([&] { return estimates_.size() == 1; }, 10.0));

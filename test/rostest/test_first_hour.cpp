@@ -141,6 +141,12 @@ std::string readFile(const std::string& path)
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
+bool holdsAll(const std::string& text, const std::vector<std::string>& parts)
+{
+  return std::all_of(parts.begin(), parts.end(),
+                     [&](const std::string& p) { return text.find(p) != std::string::npos; });
+}
+
 TEST_F(FirstHour, AnUnknownParameterIsAWarningThatNamesTheNearestAndTheConfigurationIsLogged)
 {
   // a second node, as a user would start it by hand with a typo
@@ -148,19 +154,61 @@ TEST_F(FirstHour, AnUnknownParameterIsAWarningThatNamesTheNearestAndTheConfigura
   ASSERT_EQ(std::system(("stdbuf -oL rosrun sphere_contact_estimator contact_estimator_node __name:=typo_node _rolling_raduis:=0.15 "
                          "_robot_mass:=3 odom:=/typo_odom > " + out + " 2>&1 & echo $! > " + pid).c_str()),
             0);
-  const auto has = [&](const std::vector<std::string>& parts) {
-    const std::string text = readFile(out);
-    for (const std::string& p : parts)
-      if (text.find(p) == std::string::npos)
-        return false;
-    return true;
-  };
+  const auto has = [&](const std::vector<std::string>& parts) { return holdsAll(readFile(out), parts); };
   const bool warned = watch.wait(30.0, [&] { return has({ "WARN", "unknown parameter /typo_node/rolling_raduis ignored; did you mean rolling_radius?" }); });
   const bool configured = watch.wait(10.0, [&] { return has({ "configuration (R_r = 0.1 m, F_z = 29.43 N", "robot_mass 3,", "brush_model auto," }); });
   const std::string text = readFile(out);
   std::system(("kill -INT $(cat " + pid + ") 2> /dev/null; rm -f " + pid + " " + out).c_str());
   EXPECT_TRUE(warned) << text;
   EXPECT_TRUE(configured) << text;
+}
+
+TEST_F(FirstHour, ParametersRejectedAtStartUpAreAnErrorInTheDiagnosticsUntilAConfigurationIsAccepted)
+{
+  // A second node started with parameters the estimator rejects as a whole (a fixed transient lattice with tilt that
+  // the default work budget cannot pay for, beside a friction of 0.5): the log says why and that none of them is in
+  // force, and the diagnostics say so as an ERROR until a configuration is accepted (before, one log line, and the
+  // node ran on the defaults: a friction of 0.8).
+  const std::string base = "/tmp/sce_rejected_node_" + std::to_string(getpid());
+  const std::string out = base + ".log", pid = base + ".pid";
+  std::mutex mutex;
+  diagnostic_msgs::DiagnosticStatus models;
+  bool seen = false;
+  ros::Subscriber diag = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 100, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(mutex);
+        for (const auto& s : m->status)
+          if (s.name == "rejected_node: contact models")
+          {
+            models = s;
+            seen = true;
+          }
+      });
+  ASSERT_EQ(std::system(("stdbuf -oL rosrun sphere_contact_estimator contact_estimator_node __name:=rejected_node "
+                         "_brush_model:=3 _resolution:=64 _tilt:=true _friction:=0.5 odom:=/rejected_odom > " + out +
+                         " 2>&1 & echo $! > " + pid).c_str()),
+            0);
+  const auto has = [&](const std::vector<std::string>& parts) { return holdsAll(readFile(out), parts); };
+  const bool logged = watch.wait(30.0, [&] {
+    return has({ "ERROR", "configuration rejected", "work_budget = 100000", "resolution 64 with tilt",
+                 "it needs at least 111334", "none of the parameters is in force" });
+  });
+  const auto level = [&](std::uint8_t wanted, const std::string& part) {
+    return sce::test::waitFor(mutex, [&] { return seen && models.level == wanted &&
+                                                  models.message.find(part) != std::string::npos; }, 10.0, 0.01);
+  };
+  const bool error = level(diagnostic_msgs::DiagnosticStatus::ERROR, "rejected at start-up");
+  // a configuration accepted (the defaults with another budget): the ERROR goes
+  const bool set = dynparam("set /rejected_node work_budget 200000") == 0;
+  const bool cleared = sce::test::waitFor(
+      mutex, [&] { return seen && models.level != diagnostic_msgs::DiagnosticStatus::ERROR; }, 10.0, 0.01);
+  const std::string text = readFile(out);
+  std::system(("kill -INT $(cat " + pid + ") 2> /dev/null; rm -f " + pid + " " + out).c_str());
+  EXPECT_TRUE(logged) << text;
+  std::lock_guard<std::mutex> lock(mutex);
+  EXPECT_TRUE(error) << "level " << static_cast<int>(models.level) << ": " << models.message;
+  EXPECT_TRUE(set);
+  EXPECT_TRUE(cleared) << "level " << static_cast<int>(models.level) << ": " << models.message;
 }
 
 TEST_F(FirstHour, EveryEnumIsADropDownInTheDescriptionRqtReads)

@@ -28,6 +28,7 @@
 #include "sphere_contact_estimator/ContactEstimate.h"
 #include "sphere_contact_estimator/ros/bag_analyzer.h"
 #include "sphere_contact_estimator/ros/config_file.h"
+#include "sphere_contact_estimator/ros/config_settings.h"
 #include "../command_outcome.h"
 
 namespace sce = sphere_contact_estimator;
@@ -226,10 +227,25 @@ TEST_F(BagAnalyze, SummaryAgainstClosedForms)
   // the transient model at a fixed resolution: its lattice cannot show such a target, and the summary says so (before,
   // "target met at every estimate": the transient answers were never flagged)
   hard.config.brush_model = 3;  // transient
+  hard.config.work_budget = 1000000000;  // (10000 cannot pay for its lattice: the settings are rejected)
   const sce::BagAnalysisResult fixed = sce::analyzeBag(hard);
   // (every answer but the first, whose lattice is still empty: no force, and none to miss)
   EXPECT_EQ(fixed.summary.accuracyMissed() + 1, fixed.estimates);
   EXPECT_NE(fixed.summary.report().find("target missed at "), std::string::npos) << fixed.summary.report();
+  EXPECT_EQ(fixed.summary.accuracyMissedCutShort(), 0u);  // (a budget of 1e9: nothing cut short)
+
+  // with tilt (substeps) at the least budget its lattice takes: the updates the budget cut short are said, with what
+  // buys them
+  hard.config.tilt = true;
+  hard.config.accuracy_target = 1e-2;
+  hard.config.work_budget = static_cast<int>(sce::settingsFromConfig(hard.config).leastWorkBudget());
+  const sce::BagAnalysisResult cut = sce::analyzeBag(hard);
+  EXPECT_GT(cut.summary.accuracyMissedCutShort(), 0u);
+  EXPECT_LE(cut.summary.accuracyMissedCutShort(), cut.summary.accuracyMissed());
+  EXPECT_NE(cut.summary.report().find("cut short by the work budget at " +
+                                      std::to_string(cut.summary.accuracyMissedCutShort()) + " (BRUSH_FLAG_SUBSTEPS"),
+            std::string::npos)
+      << cut.summary.report();
 }
 
 TEST_F(BagAnalyze, ParameterFiles)

@@ -107,6 +107,7 @@ private:
   std::mutex stats_mutex_;
   OdometryEstimator::Counters counters_;  // the estimator's, copied after each message
   std::string ground_frame_, last_tf_error_;
+  std::string rejected_at_start_;  // why the start-up configuration was rejected (empty once one is accepted)
   const char* last_covariance_problem_ = nullptr;
   double uncertainty_warning_ = 0.0;
   std::uint64_t reported_dropped_ = 0, reported_out_of_order_ = 0, reported_tf_stale_ = 0;

@@ -499,9 +499,12 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
         budget_cut_ = 0;  // back where the budget took it from
     }
   }
-  else if ((out.error_estimate > target || pending_resolution_ > transient_resolution_) &&
+  else if ((out.error_estimate - transient_->cutShortError() > target || pending_resolution_ > transient_resolution_) &&
            transient_resolution_ < kMaxTransientResolution)
   {
+    // (not for the error of substeps cut short, which a finer lattice does not mend: it wants more of them, beyond the
+    // budget or kMaxSubsteps as well, and answers only after rolling as far as that error takes to leave. Refining for
+    // it, an unbounded auto on BrushExtremes.NoLoadNoForce's inputs went up to 128 and 4096 substeps a message)
     const int finer = std::min(2 * transient_resolution_, kMaxTransientResolution);
     // A lattice twice as fine must fit what is left of the budget. It needs no warm start: it starts empty and answers
     // only once it has rolled the longest path, when every bristle on it entered under the inputs it followed. Back up

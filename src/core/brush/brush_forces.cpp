@@ -18,7 +18,9 @@ std::vector<std::string> describe(std::uint32_t flags)
     out.emplace_back("the error estimate is above the accuracy target (within the work budget, or at the model's own "
                      "limit: a fixed transient resolution, the linear theory): see error_estimate");
   if (flags & kSubstepsTruncated)
-    out.emplace_back("transient step longer than the substep budget: integrated with coarser substeps");
+    out.emplace_back("transient update cut short by the work budget (or the substeps' limit): sliding steps or "
+                     "substeps coarser than accuracy wants, which error_estimate covers (coarser substeps: the "
+                     "friction circle's, until the bristles then inside have left the patch)");
   if (flags & kModelFault)
     out.emplace_back("the brush model failed (a defect: please report it with the input): no forces, its state reset");
   return out;

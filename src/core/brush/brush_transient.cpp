@@ -178,6 +178,7 @@ void BrushTransient::rotateFrame(double alpha)
   const Eigen::Matrix2d Q = rotation(-alpha);  // components in axes turned by alpha
   R_ = Q * R_;
   o_ = Q * o_;
+  suspect_centre_ = Q * suspect_centre_;
   for (Eigen::Vector2d& u : u_)
     u = Q * u;
   for (Eigen::Vector2d& j : jump_)
@@ -270,6 +271,8 @@ void BrushTransient::reset()
   have_last_kin_ = false;
   held_travel_ = 0.0;
   fill_travel_ = 0.0;
+  suspect_ = false;
+  suspect_centre_.setZero();
   clearSpreadWindow();
   rows_->reset();
   const double a2 = p_.a * p_.a;
@@ -293,10 +296,13 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   {
     const int n = substeps(kin, dt);
     if (n < 0)
+    {
+      short_of_work = true;  // longer substeps than accuracy wants: no claim beyond the friction circle's
       f.flags |= brush_flags::kSubstepsTruncated;
+    }
     int count = n < 0 ? kMaxSubsteps : n;
-    // fewer substeps than accuracy wants where the work budget cannot pay for them (auto, at its coarsest lattice): the
-    // answer then makes no claim beyond the friction circle's
+    // fewer substeps than accuracy wants where the work budget cannot pay for them (a fixed lattice, or auto's at its
+    // coarsest): the answer then makes no claim beyond the friction circle's, nor do the next ones (suspect_)
     const long point_work = static_cast<long>(w_) * w_ * kPointWork;
     const long affordable = (work_budget_ - sumsWork()) / point_work;  // and the sums
     if (count > affordable)
@@ -309,6 +315,13 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
       substep(kin, dt / count);
     work_ += static_cast<long>(count) * w_ * w_ * kPointWork;
   }
+  if (short_of_work)
+  {
+    suspect_ = true;  // the bristles inside now carry it (suspect_centre_ follows them)
+    suspect_centre_.setZero();
+  }
+  else if (suspect_ && suspect_centre_.norm() >= 2.0 * p_.a)
+    suspect_ = false;
   const bool held = have_last_kin_ && sameInputs(kin, last_kin_);
   const double travel = kin.V_r.norm() * std::max(dt, 0.0);
   held_travel_ = held ? held_travel_ + travel : travel;
@@ -360,7 +373,7 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   f.M_z = g.M_z;
   f.sliding_fraction = g.sliding_fraction;
   f.max_utilisation = g.max_utilisation;
-  f.error_estimate = estimate(fixed, spread) + (short_of_work ? 2.0 : 0.0);
+  f.error_estimate = estimate(fixed, spread) + cutShortError();
   f.flagAbove(p_.accuracy_target);  // (at a fixed resolution; auto flags its answers against its own target)
   work_ += sumsWork();
   f.work = work_;
@@ -417,6 +430,7 @@ bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
   V_r_ = kin.V_r;
   omega_gamma_ = 0.0;
   o_ -= dt * kin.V_r;
+  suspect_centre_ -= dt * kin.V_r;
   recentre();
   const double a2 = p_.a * p_.a, speed2 = kin.V_r.squaredNorm();
   const lattice::BristleAdvance advance(p_, kin, timeTolerance());
@@ -508,6 +522,7 @@ void BrushTransient::substep(const ContactKinematics& kin, double dt)
   const Eigen::Vector2d o_old = o_;
   R_ = Q * R_;
   o_ = Q * o_ - rotationIntegral(rate, dt) * kin.V_r;
+  suspect_centre_ = Q * suspect_centre_ - rotationIntegral(rate, dt) * kin.V_r;
 
   // Bristle ODE du/dt = w(x) - [A_psi_dot u]: exact rotation at rate -psi_dot of the coupling, drive at
   // the midpoint of the time spent inside the patch.
@@ -773,7 +788,7 @@ BrushForces BrushTransient::forces() const
 {
   double fixed = 0.0, spread = 0.0;
   BrushForces f = sums(fixed, spread);
-  f.error_estimate = estimate(fixed, spread);
+  f.error_estimate = estimate(fixed, spread) + cutShortError();
   return f;
 }
 

@@ -306,11 +306,9 @@ void ContactEstimator::runBrush(const ContactKinematics& kin, double dt, double 
   {
     brush_->setInputSpread(o.covariance.brush_method == CovarianceMethod::None ? 0.0 : o.covariance.brush_spread);
     // what the covariance left, less the granularity of the work (a path or a substep under way when it ran out): the
-    // message's total stays within the budget
-    // (the transient model at a fixed resolution does what its lattice needs: the user chose its cost)
-    brush_->setWorkBudget(settings_.brush_model == BrushModelKind::Transient
-                              ? BrushModel::kUnlimitedBudget
-                              : settings_.work_budget - o.work - BrushModel::kWorkGranularity);
+    // message's total stays within the budget, whatever the model (EstimatorSettings::validate: at a fixed resolution
+    // the transient model's least update fits)
+    brush_->setWorkBudget(settings_.work_budget - o.work - BrushModel::kWorkGranularity);
     o.brush = brush_->update(kin, dt);
     o.work += o.brush.work;
     o.brush_model_used = brush_->lastModel();

@@ -1,9 +1,12 @@
 #include "sphere_contact_estimator/core/estimator/estimator_settings.h"
+#include "sphere_contact_estimator/core/brush/brush_transient.h"
 #include "sphere_contact_estimator/core/numerics/parameter_check.h"
 
 // STL
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace sphere_contact_estimator
 {
@@ -45,6 +48,17 @@ CylinderParameters EstimatorSettings::cylinderParameters() const
   return c;
 }
 
+long EstimatorSettings::leastWorkBudget() const
+{
+  if (brush_model != BrushModelKind::Transient)
+    return kMinWorkBudget;
+  // the brush model has what the covariance left less a granularity (ContactEstimator), and the covariance's sigma
+  // points may pass their share by one path under way: two granularities of room
+  const double share = propagate_covariance ? 1.0 - kCovarianceShare : 1.0;
+  const long lattice = BrushTransient::leastUpdateWork(resolution, tilt) + 2 * BrushModel::kWorkGranularity;
+  return std::max(kMinWorkBudget, static_cast<long>(std::ceil(static_cast<double>(lattice) / share)));
+}
+
 void EstimatorSettings::validate() const
 {
   const auto finite = [](double x) { return std::isfinite(x); };
@@ -80,6 +94,14 @@ void EstimatorSettings::validate() const
     throw std::invalid_argument(std::string("brush (patch_radius/contact_modulus, bristle_stiffness, friction, "
                                             "resolution, standstill_speed): ") + e.what());
   }
+  // (after the brush's own checks: the resolution is within its range)
+  if (work_budget < leastWorkBudget())
+    throw std::invalid_argument(
+        "work_budget = " + std::to_string(work_budget) +
+        " cannot pay for one update of the transient model's lattice at resolution " + std::to_string(resolution) +
+        (tilt ? " with tilt" : "") + (propagate_covariance ? " beside the covariance's share" : "") +
+        ": it needs at least " + std::to_string(leastWorkBudget()) +
+        " (raise work_budget, lower resolution, or use brush_model auto, whose lattice adapts to the budget)");
   try
   {
     if (rolling_resistance_model != CylinderModelKind::Off)

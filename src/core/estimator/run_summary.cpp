@@ -12,6 +12,7 @@ void AccuracyMisses::add(const ContactEstimateData& e)
   if (!(e.brush.flags & brush_flags::kAccuracyNotMet))
     return;
   ++count;
+  cut_short += (e.brush.flags & brush_flags::kSubstepsTruncated) != 0;
   if (e.brush_target > 0.0)
     worst = std::max(worst, e.brush.error_estimate / e.brush_target);
 }
@@ -85,6 +86,14 @@ std::string RunSummary::report() const
                   "BRUSH_FLAG_ACCURACY_NOT_MET)\n",
                   static_cast<unsigned long long>(accuracy_.count), share(accuracy_.count), accuracy_.worst);
     out += buffer;
+    if (accuracy_.cut_short > 0)
+    {
+      std::snprintf(buffer, sizeof(buffer),
+                    "                        of them cut short by the work budget at %llu "
+                    "(BRUSH_FLAG_SUBSTEPS_TRUNCATED: a larger work_budget buys them)\n",
+                    static_cast<unsigned long long>(accuracy_.cut_short));
+      out += buffer;
+    }
   }
   else if (models_used_[0] < estimates_)
     out += "  brush accuracy        target met at every estimate\n";

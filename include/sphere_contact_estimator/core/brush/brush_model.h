@@ -53,8 +53,9 @@ public:
   virtual void setInputSpread(double /*spread*/) {}
   /// The work the next update may do (BrushForces::work units; kUnlimitedBudget: none). The steady model stops its
   /// refinement there with the best answer reached, flagged kAccuracyNotMet and its estimate still a bound; auto also
-  /// picks the transient lattice whose work fits (brush_auto.h). The transient model at a fixed resolution does what
-  /// its lattice needs and reports it.
+  /// picks the transient lattice whose work fits (brush_auto.h). The transient model at a fixed resolution cuts its
+  /// sliding steps or substeps short where they do not fit, flagged kSubstepsTruncated, its estimate covering what that
+  /// left; its least update (BrushTransient::leastUpdateWork) it always takes.
   void setWorkBudget(long budget) { work_budget_ = budget > 0 ? budget : 1; }
   long workBudget() const { return work_budget_; }
   static constexpr long kUnlimitedBudget = 1L << 62;

@@ -154,8 +154,20 @@ public:
 
   /// Lattice spacing h [m].
   double spacing() const { return h_; }
+  /// What the estimate adds while bristles of an update whose substeps were cut short (the budget, kMaxSubsteps) are
+  /// still inside: the friction circle's 2 (of mu F_z), else 0.
+  double cutShortError() const { return suspect_ ? kCutShortError : 0.0; }
+  static constexpr double kCutShortError = 2.0;
 
   static constexpr int kMaxSubsteps = 4096;
+  /// The least work an update of a lattice of `resolution` does (ContactEstimator's budget must pay for it: the
+  /// transient model at a fixed resolution is bound by it too): every point's closed forms over the whole step without
+  /// tilt, one substep with it, and the sums.
+  static long leastUpdateWork(int resolution, bool tilt)
+  {
+    const long w = windowWidth(resolution);
+    return w * w * ((tilt ? kPointWork : kBristleWork) + kSumWork);
+  }
   /// Work in BrushForces::work units (about 10 ns, 50 instructions on this machine kind): one lattice point in one
   /// substep (measured: about 100 ns under eq. 4b)
   static constexpr long kPointWork = 10;
@@ -343,6 +355,12 @@ private:
   bool have_last_kin_ = false;
   double held_travel_ = 0.0;
   double fill_travel_ = 0.0;       // rolled since the lattice started
+  // After an update whose substeps the budget cut short (or past kMaxSubsteps) the deflections of the bristles then
+  // inside are off by up to 2 bounds, and later updates carry that while any of them is still inside: the estimate adds
+  // the friction circle's 2 until all have left. They moved with the roots: the disk of radius a about suspect_centre_,
+  // the patch centre of then moved as a root, holds them; once it lies 2a from the centre, every one is outside.
+  bool suspect_ = false;
+  Eigen::Vector2d suspect_centre_ = Eigen::Vector2d::Zero();
 };
 
 }  // namespace sphere_contact_estimator

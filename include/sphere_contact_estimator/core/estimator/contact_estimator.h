@@ -166,7 +166,7 @@ public:
   /// as a turn rate [rad].
   static constexpr double kHeadingJump = 0.5;
   /// The covariance's share of the work budget at most; the brush model has the rest.
-  static constexpr double kCovarianceShare = 0.4;
+  static constexpr double kCovarianceShare = EstimatorSettings::kCovarianceShare;
   /// Stamps closer than a ROS stamp's resolution (1 ns) count as duplicates.
   static constexpr double kMinStep = 1e-9;
 

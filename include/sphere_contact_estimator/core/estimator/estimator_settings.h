@@ -55,6 +55,12 @@ struct EstimatorSettings
   long work_budget = kDefaultWorkBudget;
   static constexpr long kDefaultWorkBudget = 100000;
   static constexpr long kMinWorkBudget = 10000, kMaxWorkBudget = 1000000000;  // below, hardly a path fits
+  /// The covariance's sigma points take at most this share of the budget (ContactEstimator); the brush model the rest.
+  static constexpr double kCovarianceShare = 0.4;
+  /// The least work_budget these settings take: kMinWorkBudget, and with the transient model at a fixed resolution
+  /// (bound by the budget like every model) enough for its lattice's least update (BrushTransient::leastUpdateWork)
+  /// beside the covariance's share.
+  long leastWorkBudget() const;
   // rolling resistance (Poeschel et al.), the sphere taken as a cylinder of effective length L
   CylinderModelKind rolling_resistance_model = CylinderModelKind::Table;
   double surface_stiffness = 1e8;  ///< k [N/m^3]

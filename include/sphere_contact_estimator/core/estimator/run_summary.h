@@ -16,6 +16,9 @@ struct AccuracyMisses
 {
   std::uint64_t count = 0;
   double worst = 0.0;  ///< largest error_estimate / target [-]
+  /// of them, cut short (brush_flags::kSubstepsTruncated: the transient model's sliding steps or substeps past the
+  /// budget), which a larger work_budget buys
+  std::uint64_t cut_short = 0;
   void add(const ContactEstimateData& e);
 };
 
@@ -49,6 +52,7 @@ public:
   /// Brush answers flagged brush_flags::kAccuracyNotMet (the target not reached within the work budget), and the
   /// largest of their error estimates over the target.
   std::uint64_t accuracyMissed() const { return accuracy_.count; }
+  std::uint64_t accuracyMissedCutShort() const { return accuracy_.cut_short; }  ///< of them, cut short
   double worstAccuracyRatio() const { return accuracy_.worst; }
 
   /// A few lines for people: distance, energies, sliding, peaks, the models auto chose.
