@@ -216,6 +216,10 @@ def confirm(a, bag, tmp, name, rows, strict):
     finer = read(path)
     if len(finer) != len(rows):
         sys.exit("%s: the confirming run answered %d messages, not %d" % (bag, len(finer), len(rows)))
+    cut = sum(1 for f in finer if int(f["brush_flags"]) & FLAG_SUBSTEPS_TRUNCATED)
+    if cut:
+        print("%s: the confirming run at %d was cut short at %d messages (BRUSH_FLAG_SUBSTEPS_TRUNCATED): its estimate "
+              "there is the friction circle's" % (bag, a.confirm_resolution, cut), file=sys.stderr)
     for part in (rows, strict):
         for r, f in zip(part, finer):
             if ambiguous(r):
@@ -270,7 +274,15 @@ def main():
             if a.confirm_resolution:
                 confirm(a, bag, tmp, name, rows, strict)
             duration = float(rows[-1]["stamp"]) - t0
+            # the references are bound by the work budget too (at its largest, 1e9): where one was cut short its
+            # answer claims no more than the friction circle, and the comparisons there say nothing
+            cut = sum(1 for f, c in zip(fine, coarse)
+                      if (int(f["brush_flags"]) | int(c["brush_flags"])) & FLAG_SUBSTEPS_TRUNCATED)
+            if cut:
+                print("%s: the reference (or its half resolution) was cut short at %d messages "
+                      "(BRUSH_FLAG_SUBSTEPS_TRUNCATED): the comparisons there say nothing" % (bag, cut), file=sys.stderr)
             stream = {"bag": os.path.basename(bag), "messages": len(rows), "not_compared": skipped,
+                      "reference_cut_short": cut,
                       "rate": (len(rows) - 1) / duration if duration > 0 else None, "duration": duration,
                       "bag_analyze_seconds": min(walls), "times_real_time": duration / min(walls),
                       "all": summarise(rows), "segments": {}, "strict": dict(summarise(strict), settings=STRICT)}
