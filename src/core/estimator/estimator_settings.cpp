@@ -95,12 +95,13 @@ void EstimatorSettings::validate() const
                                             "resolution, standstill_speed): ") + e.what());
   }
   // (after the brush's own checks: the resolution is within its range)
-  if (work_budget < leastWorkBudget())
+  const long least = leastWorkBudget();
+  if (work_budget < least)
     throw std::invalid_argument(
         "work_budget = " + std::to_string(work_budget) +
         " cannot pay for one update of the transient model's lattice at resolution " + std::to_string(resolution) +
         (tilt ? " with tilt" : "") + (propagate_covariance ? " beside the covariance's share" : "") +
-        ": it needs at least " + std::to_string(leastWorkBudget()) +
+        ": it needs at least " + std::to_string(least) +
         " (raise work_budget, lower resolution, or use brush_model auto, whose lattice adapts to the budget)");
   try
   {
