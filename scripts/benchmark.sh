@@ -64,11 +64,14 @@ log "bag_analyze's replay path on a generated bag of 1.1e5 odometry messages, on
 taskset -c 0 "$BIN/replay_benchmark" > "$OUT/replay.json"
 taskset -c 0 "$BIN/replay_benchmark" --tf --models off linear steady > "$OUT/replay_tf.json"
 taskset -c 0 "$BIN/replay_benchmark" --writers > "$OUT/writers.json"
+log "the recorded manoeuvres through the same path, each brush model (replay_benchmark --streams)"
+taskset -c 0 "$BIN/replay_benchmark" --streams "$REPO/data/manoeuvre.bag" "$OUT/manoeuvre_1khz.bag" \
+  --params "$REPO/config/contact_estimator.yaml" --models off linear steady transient auto > "$OUT/replay_streams.json"
 log "the calibration over 100 seeds, a 60-s run's time, runs that are not the model's, 100 runs fitting the floor too,"
 log "100 random robots (about 50 minutes)"
 "$BIN/calibration_accuracy" --seeds 100 --floors 100 --robots 100 > "$OUT/calibration.json"
 /usr/bin/python3 "$REPO/scripts/benchmark_report.py" --bench "$OUT/bench.json" --accuracy "$OUT/accuracy.json" \
   --node "$OUT/node.json" --bag "$OUT/bag.json" --default-brush-model "$(default_brush_model)" \
-  --replay "$OUT/replay.json" "$OUT/replay_tf.json" "$OUT/writers.json" --streams "$OUT/streams.json" --hostile "$OUT/hostile.json" --sweep "$OUT/sweep.json" --replay-profile "$REPO/bench/replay_profile.md" \
+  --replay "$OUT/replay.json" "$OUT/replay_tf.json" "$OUT/writers.json" --replay-streams "$OUT/replay_streams.json" --streams "$OUT/streams.json" --hostile "$OUT/hostile.json" --sweep "$OUT/sweep.json" --replay-profile "$REPO/bench/replay_profile.md" \
   --calibration "$OUT/calibration.json" \
   --docs "$REPO/docs"

@@ -4,14 +4,19 @@
 // (analyzeBag: the node's estimator class, writing the output bag and the CSV) once per brush model, and prints JSON:
 // messages per second for each, and the estimator's own rate (messages over the time spent in its update(): the
 // models and their uncertainty), the bound a replay can reach. The bag is generated, never committed, and removed afterwards unless --keep.
+// With --streams, recorded bags instead (data/manoeuvre.bag and its 1 kHz recording: a robot's stream, not a demo
+// lap): each replayed with the parameter file's settings (--params, default the package's config/contact_estimator.yaml:
+// what a user runs) or with each of --models, the fastest of --repeat replays, and its times real time.
 //
 //   replay_benchmark [--messages 110000] [--models off linear steady transient auto] [--tf] [--bag PATH] [--keep]
+//   replay_benchmark --streams A.bag [B.bag ...] [--params FILE] [--models ...] [--repeat 3]
 //   replay_benchmark --writers [--messages N]   rosbag::Bag::write against BagWriter: the same odometry messages
 //                                              written by each, microseconds per message
 //
 // Run by scripts/benchmark.sh (docs/benchmarks.md, "Offline replay"); on one core of the machine.
 
 // STL
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -31,6 +36,7 @@
 #include "scenario.h"
 #include "sphere_contact_estimator/ros/bag_analyzer.h"
 #include "sphere_contact_estimator/ros/bag_writer.h"
+#include "sphere_contact_estimator/ros/config_file.h"
 
 namespace sce = sphere_contact_estimator;
 
@@ -116,6 +122,93 @@ int compareWriters(const std::string& path, std::size_t n)
               n, 1e6 * rosbag_seconds / static_cast<double>(n), 1e6 * ours_seconds / static_cast<double>(n));
   return 0;
 }
+const std::map<std::string, int> kKinds = { { "off", 0 }, { "linear", 1 }, { "steady", 2 }, { "transient", 3 },
+                                            { "auto", 4 } };
+
+std::string kindName(int kind)
+{
+  for (const auto& k : kKinds)
+    if (k.second == kind)
+      return k.first;
+  return std::to_string(kind);
+}
+
+// The recorded bags through analyzeBag with the parameter file's settings, or with each of `models` (empty: the file's
+// own brush model), each the fastest of `repeat` replays (they answer alike; the machine's other tenants only slow
+// one down). JSON on stdout.
+int replayStreams(const std::vector<std::string>& bags, const std::string& params, const std::vector<std::string>& models,
+                  int repeat, const std::string& scratch)
+{
+  sce::BagAnalysisOptions base;
+  base.output = scratch + ".out.bag";
+  base.csv = scratch + ".csv";
+  std::string file = params;
+  try
+  {
+    if (file.empty())
+      file = sce::defaultParameterFile();
+    sce::applyParameterFile(base.config, file);
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "replay_benchmark: %s\n", e.what());
+    return 2;
+  }
+  std::vector<int> kinds;
+  for (const std::string& name : models)
+  {
+    const auto kind = kKinds.find(name);
+    if (kind == kKinds.end())
+    {
+      std::fprintf(stderr, "replay_benchmark: unknown model %s\n", name.c_str());
+      return 2;
+    }
+    kinds.push_back(kind->second);
+  }
+  if (kinds.empty())
+    kinds.push_back(base.config.brush_model);
+  std::printf("{\"params\": \"%s\", \"repeat\": %d, \"streams\": [", file.c_str(), repeat);
+  for (std::size_t b = 0; b < bags.size(); ++b)
+  {
+    const std::string name = bags[b].substr(bags[b].find_last_of('/') + 1);
+    std::printf("%s\n  {\"bag\": \"%s\", \"runs\": [", b == 0 ? "" : ",", name.c_str());
+    for (std::size_t k = 0; k < kinds.size(); ++k)
+    {
+      sce::BagAnalysisOptions o = base;
+      o.input = bags[b];
+      o.config.brush_model = kinds[k];
+      double best = INFINITY, best_estimator = INFINITY;
+      sce::BagAnalysisResult r;
+      for (int i = 0; i < repeat; ++i)
+      {
+        const auto start = std::chrono::steady_clock::now();
+        try
+        {
+          r = sce::analyzeBag(o);
+        }
+        catch (const std::exception& e)
+        {
+          std::fprintf(stderr, "replay_benchmark: %s: %s\n", bags[b].c_str(), e.what());
+          return 1;
+        }
+        best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        best_estimator = std::min(best_estimator, r.compute_seconds);
+      }
+      std::printf("%s\n    {\"brush_model\": %d, \"name\": \"%s\", \"messages\": %llu, \"bag_seconds\": %.3f, "
+                  "\"seconds\": %.4f, \"messages_per_second\": %.0f, \"times_real_time\": %.2f, "
+                  "\"estimator_seconds\": %.4f, \"estimator_times_real_time\": %.2f}",
+                  k == 0 ? "" : ",", kinds[k], kindName(kinds[k]).c_str(),
+                  static_cast<unsigned long long>(r.odometry), r.bag_seconds, best, r.odometry / best,
+                  r.bag_seconds / best, best_estimator, best_estimator > 0.0 ? r.bag_seconds / best_estimator : 0.0);
+      std::fflush(stdout);
+    }
+    std::printf("]}");
+  }
+  std::printf("\n]}\n");
+  std::remove(base.output.c_str());
+  std::remove(base.csv.c_str());
+  return 0;
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -125,20 +218,35 @@ int main(int argc, char** argv)
   std::vector<std::string> models = { "off", "linear", "steady", "transient", "auto" };
   bool with_tf = false, keep = false, writers = false;
   std::string path = "/tmp/sphere_contact_estimator_replay_benchmark.bag";
+  std::vector<std::string> streams;
+  std::string params;
+  int repeat = 3;
   app.add_option("--messages", messages, "odometry messages in the bag")->capture_default_str();
   app.add_option("--models", models, "brush models to replay with")->capture_default_str();
   app.add_flag("--tf", with_tf, "record the sphere's pose on /tf beside each message (the estimator then looks it up)");
   app.add_option("--bag", path, "where to write the bag")->capture_default_str();
   app.add_flag("--keep", keep, "keep the bag, the output bag and the CSV");
   app.add_flag("--writers", writers, "only time rosbag::Bag::write against BagWriter on --messages odometry messages");
+  app.add_option("--streams", streams, "recorded bags to replay instead of the generated one (e.g. data/manoeuvre.bag)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--params", params,
+                 "with --streams: parameter file (default: the package's config/contact_estimator.yaml)");
+  app.add_option("--repeat", repeat, "with --streams: replays of each, the fastest reported")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   CLI11_PARSE(app, argc, argv);
+  if (!streams.empty())
+  {
+    ros::Time::init();
+    return replayStreams(streams, params, app.count("--models") > 0 ? models : std::vector<std::string>{}, repeat,
+                         path);
+  }
   if (writers)
   {
     ros::Time::init();
     return compareWriters(path, messages);
   }
-  const std::map<std::string, int> kinds = { { "off", 0 }, { "linear", 1 }, { "steady", 2 }, { "transient", 3 },
-                                             { "auto", 4 } };
+  const std::map<std::string, int>& kinds = kKinds;
   ros::Time::init();
   const std::size_t written = writeBag(path, messages, with_tf);
   std::printf("{\"messages\": %zu, \"tf\": %s, \"replay\": [", written, with_tf ? "true" : "false");
