@@ -6,7 +6,8 @@ Usage: benchmark_report.py --bench BENCH.json --accuracy ACCURACY.json --docs DO
                            [--node NODE.json] [--bag BAG.json] [--default-brush-model 1..4]
 
 --replay is replay_benchmark's output (odometry only, then with --tf), --replay-profile the write-up of where its time
-went; --replay-streams replay_benchmark --streams' output (the recorded manoeuvres, each model, times real time); --node is node_benchmark's output (the node over roscpp and the bag replay); --bag is the analysis of the noisy demo
+went; --replay-streams replay_benchmark --streams' output (the recorded manoeuvres, each model, times real time);
+--node is node_benchmark's output (the node over roscpp and the bag replay); --bag is the analysis of the noisy demo
 bag by the previous and the current auto model ({"targets": [{"target", "before": {"linear", "steady", "transient",
 "max_error"}, "after": {...}}], "reference", "messages"}). Errors are max(|dF_x|, |dF_y|, |dM_z| / a) / (mu F_z).
 The brush sections are keyed by sliding law (coulomb: eq. 4b; rigid: Sect. 6's approximation), in model_accuracy's

@@ -5,8 +5,9 @@
 // messages per second for each, and the estimator's own rate (messages over the time spent in its update(): the
 // models and their uncertainty), the bound a replay can reach. The bag is generated, never committed, and removed afterwards unless --keep.
 // With --streams, recorded bags instead (data/manoeuvre.bag and its 1 kHz recording: a robot's stream, not a demo
-// lap): each replayed with the parameter file's settings (--params, default the package's config/contact_estimator.yaml:
-// what a user runs) or with each of --models, the fastest of --repeat replays, and its times real time.
+// lap): each replayed with the parameter file's settings (--params, default the package's
+// config/contact_estimator.yaml: what a user runs) or with each of --models, the fastest of --repeat replays, and its
+// times real time.
 //
 //   replay_benchmark [--messages 110000] [--models off linear steady transient auto] [--tf] [--bag PATH] [--keep]
 //   replay_benchmark --streams A.bag [B.bag ...] [--params FILE] [--models ...] [--repeat 3]
@@ -136,8 +137,8 @@ std::string kindName(int kind)
 // The recorded bags through analyzeBag with the parameter file's settings, or with each of `models` (empty: the file's
 // own brush model), each the fastest of `repeat` replays (they answer alike; the machine's other tenants only slow
 // one down). JSON on stdout.
-int replayStreams(const std::vector<std::string>& bags, const std::string& params, const std::vector<std::string>& models,
-                  int repeat, const std::string& scratch)
+int replayStreams(const std::vector<std::string>& bags, const std::string& params,
+                  const std::vector<std::string>& models, int repeat, const std::string& scratch)
 {
   sce::BagAnalysisOptions base;
   base.output = scratch + ".out.bag";
@@ -213,7 +214,8 @@ int replayStreams(const std::vector<std::string>& bags, const std::string& param
 
 int main(int argc, char** argv)
 {
-  CLI::App app{ "replay_benchmark: bag_analyze's throughput on a generated bag of at least --messages odometry messages" };
+  CLI::App app{ "replay_benchmark: bag_analyze's throughput on a generated bag of --messages odometry messages, or on "
+                "recorded bags (--streams)" };
   std::size_t messages = 110000;
   std::vector<std::string> models = { "off", "linear", "steady", "transient", "auto" };
   bool with_tf = false, keep = false, writers = false;
