@@ -31,6 +31,14 @@ SWEEPS+=":BrushTransient.ErrorEstimateCoversNoisyHistoriesAtRandomPoints:ForceCo
 SWEEPS+=":BrushSteady.ErrorEstimateBoundsTheErrorOnRandomPoints:BrushAuto.WithinItsTargetAtRandomPoints"
 SWEEPS+=":BrushTransient.ConvergesMonotonicallyOnTheFigure4Set:ContactFit.FrictionIsOnlyABoundWhereTheRunNeverSlides"
 SWEEPS+=":BrushTransient.EstimateCoversTheDefaultRobotsNoisyHistories"
+# the same for the checks of the transient model's estimate along random histories and of the sliding steps over the
+# envelope (10-13 s each in the release build: 2-3 minutes each here, a third of this stage on a 2.1 GHz host), and the
+# calibration's coverage over a synthetic run
+SWEEPS+=":BrushTransient.SubstepsCutShortKeepTheirErrorInTheEstimateUntilTheirBristlesLeave"
+SWEEPS+=":BrushTransient.EstimateCoversNoisyRollsOfTensOfSpacingsAMessage"
+SWEEPS+=":BrushTransient.EstimateCoversNoisySkidsThatRollAboutASpacingAMessage"
+SWEEPS+=":BristleAdvance.SlidingStepErrorBoundsTheErrorOverTheWholeEnvelope"
+SWEEPS+=":ContactFit.RecoversTheParametersOfASyntheticRunWithinItsIntervals"
 rc=0
 for t in "${TESTS[@]}"; do
   log "$t (ASan + UBSan)"
