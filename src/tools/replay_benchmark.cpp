@@ -21,7 +21,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -35,6 +34,7 @@
 
 // Package
 #include "scenario.h"
+#include "sphere_contact_estimator/core/brush/brush_model.h"
 #include "sphere_contact_estimator/ros/bag_analyzer.h"
 #include "sphere_contact_estimator/ros/bag_writer.h"
 #include "sphere_contact_estimator/ros/config_file.h"
@@ -123,15 +123,16 @@ int compareWriters(const std::string& path, std::size_t n)
               n, 1e6 * rosbag_seconds / static_cast<double>(n), 1e6 * ours_seconds / static_cast<double>(n));
   return 0;
 }
-const std::map<std::string, int> kKinds = { { "off", 0 }, { "linear", 1 }, { "steady", 2 }, { "transient", 3 },
-                                            { "auto", 4 } };
-
-std::string kindName(int kind)
+// The node's brush_model number of a model's name ("off" included: parseBrushModelKind takes only models to run), or
+// -1, said on stderr.
+int brushModel(const std::string& name)
 {
-  for (const auto& k : kKinds)
-    if (k.second == kind)
-      return k.first;
-  return std::to_string(kind);
+  if (name == sce::toString(sce::BrushModelKind::Off))
+    return 0;
+  if (const auto kind = sce::parseBrushModelKind(name))
+    return static_cast<int>(*kind);
+  std::fprintf(stderr, "replay_benchmark: unknown model %s\n", name.c_str());
+  return -1;
 }
 
 // The recorded bags through analyzeBag with the parameter file's settings, or with each of `models` (empty: the file's
@@ -158,13 +159,9 @@ int replayStreams(const std::vector<std::string>& bags, const std::string& param
   std::vector<int> kinds;
   for (const std::string& name : models)
   {
-    const auto kind = kKinds.find(name);
-    if (kind == kKinds.end())
-    {
-      std::fprintf(stderr, "replay_benchmark: unknown model %s\n", name.c_str());
+    kinds.push_back(brushModel(name));
+    if (kinds.back() < 0)
       return 2;
-    }
-    kinds.push_back(kind->second);
   }
   if (kinds.empty())
     kinds.push_back(base.config.brush_model);
@@ -198,7 +195,7 @@ int replayStreams(const std::vector<std::string>& bags, const std::string& param
       std::printf("%s\n    {\"brush_model\": %d, \"name\": \"%s\", \"messages\": %llu, \"bag_seconds\": %.3f, "
                   "\"seconds\": %.4f, \"messages_per_second\": %.0f, \"times_real_time\": %.2f, "
                   "\"estimator_seconds\": %.4f, \"estimator_times_real_time\": %.2f}",
-                  k == 0 ? "" : ",", kinds[k], kindName(kinds[k]).c_str(),
+                  k == 0 ? "" : ",", kinds[k], sce::toString(static_cast<sce::BrushModelKind>(kinds[k])),
                   static_cast<unsigned long long>(r.odometry), r.bag_seconds, best, r.odometry / best,
                   r.bag_seconds / best, best_estimator, best_estimator > 0.0 ? r.bag_seconds / best_estimator : 0.0);
       std::fflush(stdout);
@@ -248,30 +245,26 @@ int main(int argc, char** argv)
     ros::Time::init();
     return compareWriters(path, messages);
   }
-  const std::map<std::string, int>& kinds = kKinds;
   ros::Time::init();
   const std::size_t written = writeBag(path, messages, with_tf);
   std::printf("{\"messages\": %zu, \"tf\": %s, \"replay\": [", written, with_tf ? "true" : "false");
   bool first = true;
   for (const std::string& name : models)
   {
-    const auto kind = kinds.find(name);
-    if (kind == kinds.end())
-    {
-      std::fprintf(stderr, "replay_benchmark: unknown model %s\n", name.c_str());
+    const int kind = brushModel(name);
+    if (kind < 0)
       return 2;
-    }
     sce::BagAnalysisOptions o;
     o.input = path;
     o.output = path + ".out.bag";
     o.csv = path + ".csv";
-    o.config.brush_model = kind->second;
+    o.config.brush_model = kind;
     const auto start = std::chrono::steady_clock::now();
     const sce::BagAnalysisResult r = sce::analyzeBag(o);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("%s\n  {\"brush_model\": %d, \"name\": \"%s\", \"messages\": %llu, \"seconds\": %.3f, "
                 "\"messages_per_second\": %.0f, \"estimator_seconds\": %.3f, \"estimator_messages_per_second\": %.0f}",
-                first ? "" : ",", kind->second, name.c_str(), static_cast<unsigned long long>(r.odometry), seconds,
+                first ? "" : ",", kind, name.c_str(), static_cast<unsigned long long>(r.odometry), seconds,
                 r.odometry / seconds, r.compute_seconds,
                 r.compute_seconds > 0.0 ? r.odometry / r.compute_seconds : 0.0);
     std::fflush(stdout);
