@@ -15,7 +15,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <mutex>
 #include <thread>
 
@@ -73,9 +72,6 @@ int main(int argc, char** argv)
   sce::BagAnalysisOptions options;
   std::string params;
   std::vector<std::string> sets;
-  const std::map<std::string, int> brush_models = { { "off", 0 }, { "linear", 1 }, { "steady", 2 }, { "transient", 3 },
-                                                    { "auto", 4 } };
-  const std::map<std::string, int> rr_models = { { "off", 0 }, { "exact", 1 }, { "expansion", 2 }, { "table", 3 } };
   std::string brush_model, sliding_law, rr_model, progress = "auto";
   bool estimates_only = false, as_set = false;
   std::vector<std::string> inputs;
@@ -95,13 +91,12 @@ int main(int argc, char** argv)
                  "parameter file in the node's format (default: the package's config/contact_estimator.yaml, "
                  "as contact_estimator.launch loads it)");
   app.add_option("--set", sets, "NAME=VALUE: one parameter, after the file (repeatable)");
-  app.add_option("--brush-model", brush_model, "brush model, overriding the file")
-      ->check(CLI::IsMember({ "off", "linear", "steady", "transient", "auto" }));
+  // (the three models' names are cfg/ContactEstimator.cfg's enums, checked where they are set: setParameter)
+  app.add_option("--brush-model", brush_model, "brush model, overriding the file: off, linear, steady, transient, auto");
   app.add_option("--sliding-law", sliding_law, "sliding law of the brush models, overriding the file: coulomb (eq. 4b) "
-                                               "or rigid (Sect. 6's approximation, as the paper's Fig. 4)")
-      ->check(CLI::IsMember({ "coulomb", "rigid" }));
-  app.add_option("--rolling-resistance-model", rr_model, "rolling-resistance model, overriding the file")
-      ->check(CLI::IsMember({ "off", "exact", "expansion", "table" }));
+                                               "or rigid (Sect. 6's approximation, as the paper's Fig. 4)");
+  app.add_option("--rolling-resistance-model", rr_model, "rolling-resistance model, overriding the file: off, exact, "
+                                                          "expansion, table");
   app.add_option("--odom-topic", options.odom_topic, "nav_msgs/Odometry topic (default: the bag's only one)");
   app.add_option("--topics", options.topics, "input topics to copy into the output (default: all)");
   app.add_flag("--estimates-only", estimates_only, "copy no input topic into the output");
@@ -123,12 +118,10 @@ int main(int argc, char** argv)
       params = sce::defaultParameterFile();
     sce::applyParameterFile(options.config, params);
     sce::applyParameterSets(options.config, sets);
-    if (!brush_model.empty())
-      options.config.brush_model = brush_models.at(brush_model);
-    if (!sliding_law.empty())
-      sce::setParameter(options.config, "sliding_law", sliding_law);
-    if (!rr_model.empty())
-      options.config.rolling_resistance_model = rr_models.at(rr_model);
+    for (const auto& [name, value] : { std::pair{ "brush_model", &brush_model }, { "sliding_law", &sliding_law },
+                                       { "rolling_resistance_model", &rr_model } })
+      if (!value->empty())
+        sce::setParameter(options.config, name, *value);
     // what made the estimates, for the output's record
     options.config_source = "parameters " + params;
     for (const std::string& s : sets)

@@ -307,6 +307,16 @@ TEST_F(BagAnalyze, CommandLine)
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_EQ(column(slurp(kDir + "/cli_rigid.csv"), "sliding_law"), std::vector<std::string>(301, "1"));
   EXPECT_NE(runCommand(tool + " -i " + bag + " -p " + params + " --sliding-law viscous").status, 0);
+  // the models' names are the cfg's enums, as the node and dynparam take them (without regard to case), and a name
+  // that is none of them is an error that lists them
+  r = runCommand(tool + " -i " + bag + " --csv " + kDir + "/cli_models.csv -p " + params +
+                 " --brush-model Steady --rolling-resistance-model OFF");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_EQ(column(slurp(kDir + "/cli_models.csv"), "brush_model"), std::vector<std::string>(301, "2"));
+  r = runCommand(tool + " -i " + bag + " -p " + params + " --brush-model stedy");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("'stedy' is none of off (0), linear (1), steady (2), transient (3), auto (4)"), std::string::npos)
+      << r.err;
 
   // errors for people: status 2 (CLI11's own for usage) and the reason on stderr
   r = runCommand(tool + " -i " + kDir + "/tf_out.bag --odom-topic /nope");
