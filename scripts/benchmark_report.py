@@ -693,9 +693,14 @@ def streams_section(streams, node):
                 name, v["messages"], fmt_us(t["p50"]), fmt_us(t["p99"]), fmt_us(t["max"]), v["work"]["max"], models,
                 fmt_share(v["flagged"], v["messages"]), fmt_err(v["unflagged_error_max"]) if v["unflagged_error_max"] is not None else "–",
                 v["unflagged_over_target"], v.get("estimate_short", "–"), fmt_err(v["reference_error_max"])))
-        lines += ["", "Flagged because the target was missed within the work budget; of those, %d with the coarsest"
-                  " lattice's substeps truncated by it. Targets: accuracy_target 1 %%, raised below the noise to a quarter"
-                  " of the forces' spread (median %s)." % (a["flagged_substeps_truncated"], fmt_err(a["target_median"])), ""]
+        lines += ["", "Flagged because the target was missed within the work budget; of those, %s held by it (auto at"
+                  " a coarser lattice than the target asks: BRUSH_FLAG_BUDGET_LIMITED), %d with the lattice's steps"
+                  " truncated by it, %s at standstill (no finer lattice fills until the robot rolls); the rest while a"
+                  " finer lattice rolls in, or above the target by what a finer one would not mend (a warm start's"
+                  " entry error, a switch's carried difference). Targets: accuracy_target 1 %%,"
+                  " raised below the noise to a quarter of the forces' spread (median %s)."
+                  % (a.get("flagged_budget_limited", "–"), a["flagged_substeps_truncated"],
+                     a.get("flagged_standstill", "–"), fmt_err(a["target_median"])), ""]
         q = s.get("strict")
         if q:
             lines += ["At accuracy_target 0.1 %% (auto_noise_fraction 0, the same stream and reference): per message p50 %s,"

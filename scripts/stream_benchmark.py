@@ -5,8 +5,9 @@ For each bag (a manoeuvre recorded with demo.launch, e.g. data/manoeuvre.bag and
 the package's default settings (config/contact_estimator.yaml: auto, the twist's covariance propagated, the work
 budget) and, as the reference, the transient model at --reference-resolution with no work budget and, for the
 reference's own error, at half that resolution. Per message: the compute time and the counted work, the model auto
-used, whether the answer is flagged BRUSH_FLAG_ACCURACY_NOT_MET (and why: the target missed within the work budget,
-substeps truncated), and the error max(|dF_x|, |dF_y|, |dM_z| / a) / (mu F_z) against the reference. An unflagged
+used, whether the answer is flagged BRUSH_FLAG_ACCURACY_NOT_MET (and why: held by the work budget,
+BRUSH_FLAG_BUDGET_LIMITED; substeps truncated; at standstill, where no finer lattice fills), and the error
+max(|dF_x|, |dF_y|, |dM_z| / a) / (mu F_z) against the reference. An unflagged
 message whose error is above its accuracy target by more than the reference's own difference is a failure of the
 estimate; the summary counts them, and every estimate below its error. A stream's first messages, before the reference
 describes the same contact as auto (warm_up: the history before the recording is unknown), are timed but not compared.
@@ -38,7 +39,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from bag_model_accuracy import environment, error  # noqa: E402  (the tool's own libraries first)
 
-FLAG_SUBSTEPS_TRUNCATED, FLAG_ACCURACY_NOT_MET = 8, 16
+FLAG_SUBSTEPS_TRUNCATED, FLAG_ACCURACY_NOT_MET, FLAG_BUDGET_LIMITED = 8, 16, 64
 STRICT = {"accuracy_target": 0.001, "auto_noise_fraction": 0.0}  # a second pass at 0.1 %, not raised to the noise
 MODELS = {"0": "off", "1": "linear", "2": "steady", "3": "transient", "4": "auto"}
 
@@ -150,6 +151,11 @@ def summarise(rows):
     per_unit = [1e3 * t / w for t, w in zip(times, works) if w >= HEAVY_WORK]
     flagged = [r for r in rows if int(r["brush_flags"]) & FLAG_ACCURACY_NOT_MET]
     truncated = sum(1 for r in rows if int(r["brush_flags"]) & FLAG_SUBSTEPS_TRUNCATED)
+    # why the others were flagged: auto held by the budget (a larger one buys them), or at standstill (slips undefined:
+    # no finer lattice fills until the robot rolls)
+    held = sum(1 for r in flagged if int(r["brush_flags"]) & FLAG_BUDGET_LIMITED)
+    standstill = sum(1 for r in flagged if not int(r["brush_flags"]) & (FLAG_BUDGET_LIMITED | FLAG_SUBSTEPS_TRUNCATED)
+                     and r["slips_defined"] in ("0", "false", "False"))
     # the messages before the reference's warm-up is over are not compared (warm_up)
     compared = [r for r in rows if r["_error"] is not None]
     flagged_compared = [r for r in flagged if r["_error"] is not None]
@@ -179,6 +185,8 @@ def summarise(rows):
         "models": models,
         "flagged": len(flagged),
         "flagged_substeps_truncated": truncated,
+        "flagged_budget_limited": held,
+        "flagged_standstill": standstill,
         "flagged_error_max": max((r["_error"] for r in flagged_compared), default=None),
         "unflagged_error_max": max(errors) if errors else None,
         "unflagged_error_p99": quantile(errors, 0.99),
@@ -293,11 +301,12 @@ def main():
             out["streams"].append(stream)
             s = stream["all"]
             print("%s: %d messages at %.0f Hz; bag_analyze %.1fx real time; per message p50 %.0f us, p99 %.0f us, max %.0f us"
-                  " (work max %.0f); flagged %d (%.1f %%); unflagged: largest error %.2g, %d over the target;"
-                  " estimate below the error at %d"
+                  " (work max %.0f); flagged %d (%.1f %%: %d held by the work budget, %d cut short, %d at standstill);"
+                  " unflagged: largest error %.2g, %d over the target; estimate below the error at %d"
                   % (stream["bag"], len(rows), stream["rate"] or 0.0, stream["times_real_time"], s["time_us"]["p50"],
                      s["time_us"]["p99"], s["time_us"]["max"], s["work"]["max"], s["flagged"],
-                     100.0 * s["flagged"] / max(1, len(rows)), s["unflagged_error_max"] or 0.0,
+                     100.0 * s["flagged"] / max(1, len(rows)), s["flagged_budget_limited"],
+                     s["flagged_substeps_truncated"], s["flagged_standstill"], s["unflagged_error_max"] or 0.0,
                      s["unflagged_over_target"], s["estimate_short"]), file=sys.stderr)
             q = stream["strict"]
             print("  at accuracy_target 0.1 %%: per message p50 %.0f us, p99 %.0f us, max %.0f us; flagged %d (%.1f %%);"

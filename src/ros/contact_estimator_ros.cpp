@@ -429,6 +429,11 @@ void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWra
                                   ? ", of them cut short by the work budget in " +
                                         std::to_string(accuracy_missed_.cut_short) +
                                         " (BRUSH_FLAG_SUBSTEPS_TRUNCATED: a larger work_budget buys them)"
+                                  : std::string()) +
+                             (accuracy_missed_.budget_limited > 0
+                                  ? ", at a lattice the work budget held in " +
+                                        std::to_string(accuracy_missed_.budget_limited) +
+                                        " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget buys the finer one)"
                                   : std::string());
     notes = notes.empty() ? text : notes + "; " + text;
   }

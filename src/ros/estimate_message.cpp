@@ -21,7 +21,8 @@ static_assert(ContactEstimate::BRUSH_FLAG_STANDSTILL == brush_flags::kStandstill
               ContactEstimate::BRUSH_FLAG_LINEAR_SATURATED == brush_flags::kLinearSaturated &&
               ContactEstimate::BRUSH_FLAG_SUBSTEPS_TRUNCATED == brush_flags::kSubstepsTruncated &&
               ContactEstimate::BRUSH_FLAG_ACCURACY_NOT_MET == brush_flags::kAccuracyNotMet &&
-              ContactEstimate::BRUSH_FLAG_MODEL_FAULT == brush_flags::kModelFault);
+              ContactEstimate::BRUSH_FLAG_MODEL_FAULT == brush_flags::kModelFault &&
+              ContactEstimate::BRUSH_FLAG_BUDGET_LIMITED == brush_flags::kBudgetLimited);
 static_assert(ContactEstimate::BRUSH_OFF == static_cast<int>(BrushModelKind::Off) &&
               ContactEstimate::BRUSH_LINEAR == static_cast<int>(BrushModelKind::Linear) &&
               ContactEstimate::BRUSH_STEADY == static_cast<int>(BrushModelKind::Steady) &&

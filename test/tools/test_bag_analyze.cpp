@@ -223,6 +223,14 @@ TEST_F(BagAnalyze, SummaryAgainstClosedForms)
                                          std::to_string(missed.summary.accuracyMissed()) + " estimates"),
             std::string::npos)
       << missed.summary.report();
+  // and how many of them the budget held (auto below the lattice or tolerance the target asks), with what buys them
+  EXPECT_GT(missed.summary.accuracyMissedBudgetLimited(), 0u);
+  EXPECT_LE(missed.summary.accuracyMissedBudgetLimited(), missed.summary.accuracyMissed());
+  EXPECT_NE(missed.summary.report().find("of them at a lattice the work budget held at " +
+                                         std::to_string(missed.summary.accuracyMissedBudgetLimited()) +
+                                         " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget buys the finer one)"),
+            std::string::npos)
+      << missed.summary.report();
 
   // the transient model at a fixed resolution: its lattice cannot show such a target, and the summary says so (before,
   // "target met at every estimate": the transient answers were never flagged)

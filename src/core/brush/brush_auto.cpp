@@ -193,11 +193,13 @@ BrushForces BrushAuto::steadyFamily(const Slips& s, const Eigen::Vector2d& sigma
   if (steady_cached_ && steady_cache_.error_estimate <= budget)
     return steady_cache_;  // evaluated for the lag, to a quarter of the target
   BrushSteady::Stats stats;
+  const long room = remaining();
   BrushForces f = steady_.evaluate(sigma, s.phi, s.phi_gamma, s.phi_psi, budget, &stats,
-                                   std::min(BrushSteady::kMaxWork, remaining()));
+                                   std::min(BrushSteady::kMaxWork, room));
   spent_ += stats.work;
   cost_ += kSteadyPathCost * stats.paths;
   steady_short_ = (f.flags & brush_flags::kAccuracyNotMet) != 0;
+  budget_held_ = budget_held_ || (steady_short_ && room < BrushSteady::kMaxWork);  // (not the solver's own limit)
   // the work budget spent before the target: the linear answer where its bound is the smaller
   const double linear_bound = std::max(linear_bound_, lag_->largestHeld());
   if ((f.flags & brush_flags::kAccuracyNotMet) && linear_bound < f.error_estimate)
@@ -232,6 +234,7 @@ void BrushAuto::enterTransient(const ContactKinematics& kin, double dt)
   }
   transient_resolution_ = resolution;
   budget_cut_ = resolution < wanted ? wanted : 0;
+  budget_held_ = budget_held_ || resolution < wanted;
   steady_short_ = false;
   transient_->reset();
   easy_travel_ = 0.0;
@@ -252,6 +255,7 @@ void BrushAuto::enterTransient(const ContactKinematics& kin, double dt)
     if (whole > room && whole > 0)
     {
       roll = warm * std::max(0.0, static_cast<double>(room) / static_cast<double>(whole));
+      budget_held_ = true;  // a warm start short of its roll, whose bristles carry the entry error
       const double reached = std::min(1.0, V * roll / longestPath(p_));
       entry_error_ += 1.0 - reached;
     }
@@ -269,6 +273,7 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
 {
   checkInput(kin, dt);
   spent_ = 0;
+  budget_held_ = false;
   const Slips s = computeSlips(kin, p_.standstill_speed);
   last_slips_ = s;
   const double target = target_ = effectiveTarget();
@@ -299,6 +304,8 @@ BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
   out.flags &= ~brush_flags::kLinearSaturated;  // auto never publishes a saturated linear answer as such
   out.flags &= ~brush_flags::kAccuracyNotMet;  // (its lattice's, against the configured target)
   out.flagAbove(target);
+  if (budget_held_ && (out.flags & brush_flags::kAccuracyNotMet))
+    out.flags |= brush_flags::kBudgetLimited;  // (what a larger work_budget would buy: the operator's to decide)
   last_model_ = model;
   last_resolution_ = resolution;
   answered_ = true;
@@ -465,6 +472,7 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
     transient_resolution_ /= 2;
     retire(finer_);
     easy_travel_ = 0.0;
+    budget_held_ = true;
   }
   resolution = transient_resolution_;
   BrushForces out = stepTransient(kin, s, dt);
@@ -477,7 +485,10 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
   // waits for the next entry into the transient model, and the estimate meanwhile says that the target is
   // missed.
   if (finer_ && finer_->predictWork(kin, dt) > remaining())
+  {
     retire(finer_);  // the budget no longer carries both lattices
+    budget_held_ = true;
+  }
   if (finer_)
   {
     stepLattice(*finer_, 2 * resolution, kin, s, dt);
@@ -526,7 +537,9 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
       finer_travel_ = 0.0;
     }
     else if (!s.defined)
-      pending_resolution_ = finer;
+      pending_resolution_ = finer;  // (at standstill nothing renews a finer lattice: the budget is not what holds it)
+    else
+      budget_held_ = true;
   }
   // Both ways: an estimate that stays below an eighth of the target while the longest path rolls says that a lattice of
   // half the resolution (second order: about four times as far off) would still meet it.

@@ -21,6 +21,9 @@ std::vector<std::string> describe(std::uint32_t flags)
     out.emplace_back("transient update cut short by the work budget (or the substeps' limit): sliding steps or "
                      "substeps coarser than accuracy wants, which error_estimate covers (coarser substeps: the "
                      "friction circle's, until the bristles then inside have left the patch)");
+  if (flags & kBudgetLimited)
+    out.emplace_back("auto missed the accuracy target at a lattice the work budget holds: the finer one that would "
+                     "meet it does not fit work_budget (a larger budget buys it)");
   if (flags & kModelFault)
     out.emplace_back("the brush model failed (a defect: please report it with the input): no forces, its state reset");
   return out;

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <tuple>
 
 namespace sphere_contact_estimator
 {
@@ -13,6 +15,7 @@ void AccuracyMisses::add(const ContactEstimateData& e)
     return;
   ++count;
   cut_short += (e.brush.flags & brush_flags::kSubstepsTruncated) != 0;
+  budget_limited += (e.brush.flags & brush_flags::kBudgetLimited) != 0;
   if (e.brush_target > 0.0)
     worst = std::max(worst, e.brush.error_estimate / e.brush_target);
 }
@@ -86,14 +89,16 @@ std::string RunSummary::report() const
                   "BRUSH_FLAG_ACCURACY_NOT_MET)\n",
                   static_cast<unsigned long long>(accuracy_.count), share(accuracy_.count), accuracy_.worst);
     out += buffer;
-    if (accuracy_.cut_short > 0)
-    {
-      std::snprintf(buffer, sizeof(buffer),
-                    "                        of them cut short by the work budget at %llu "
-                    "(BRUSH_FLAG_SUBSTEPS_TRUNCATED: a larger work_budget buys them)\n",
-                    static_cast<unsigned long long>(accuracy_.cut_short));
-      out += buffer;
-    }
+    // of them, those the budget held back, and what buys them
+    const std::tuple<std::uint64_t, const char*, const char*> held[] = {
+      { accuracy_.cut_short, "cut short by the work budget at ",
+        " (BRUSH_FLAG_SUBSTEPS_TRUNCATED: a larger work_budget buys them)" },
+      { accuracy_.budget_limited, "at a lattice the work budget held at ",
+        " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget buys the finer one)" },
+    };
+    for (const auto& [count, what, buys] : held)
+      if (count > 0)
+        out += std::string("                        of them ") + what + std::to_string(count) + buys + "\n";
   }
   else if (models_used_[0] < estimates_)
     out += "  brush accuracy        target met at every estimate\n";

@@ -160,6 +160,10 @@ private:
   int budget_cut_ = 0;
   double easy_travel_ = 0.0;    // rolled with the transient estimate below an eighth of the target
   long spent_ = 0;              // work of the update under way
+  // the update under way: the work budget held the answer back (a coarser lattice than its target asks, a finer one
+  // dropped or not started, a warm start short of its roll, a steady answer short of its tolerance): kBudgetLimited
+  // where the target is then missed
+  bool budget_held_ = false;
   bool in_transient_ = false;
   double steady_distance_ = 0.0;  // travelled while the steady conditions held, in transient mode
   // For a transit after leaving the transient model its lattice keeps rolling beside the steady family's answers, so

@@ -18,6 +18,10 @@ constexpr std::uint32_t kAccuracyNotMet = 1u << 4;       ///< error_estimate abo
 /// The model failed (threw: a defect, not an input it refuses): no forces (zero), the model's state reset;
 /// ContactEstimator::lastFault says what.
 constexpr std::uint32_t kModelFault = 1u << 5;
+/// auto, with kAccuracyNotMet: the finer lattice that would meet the target (twice the resolution, or the one the
+/// budget coarsened the lattice from) does not fit what the work budget leaves of the message; a larger work_budget
+/// buys it.
+constexpr std::uint32_t kBudgetLimited = 1u << 6;
 constexpr std::uint32_t kInvalidatingFlags = kStandstill | kNoSteadyStateTilt | kLinearSaturated | kModelFault;
 
 std::vector<std::string> describe(std::uint32_t flags);

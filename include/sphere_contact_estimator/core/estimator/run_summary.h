@@ -19,6 +19,9 @@ struct AccuracyMisses
   /// of them, cut short (brush_flags::kSubstepsTruncated: the transient model's sliding steps or substeps past the
   /// budget), which a larger work_budget buys
   std::uint64_t cut_short = 0;
+  /// of them, auto's answers at a lattice the budget held (brush_flags::kBudgetLimited: the finer one that would meet
+  /// the target does not fit), which a larger work_budget buys too
+  std::uint64_t budget_limited = 0;
   void add(const ContactEstimateData& e);
 };
 
@@ -53,6 +56,7 @@ public:
   /// largest of their error estimates over the target.
   std::uint64_t accuracyMissed() const { return accuracy_.count; }
   std::uint64_t accuracyMissedCutShort() const { return accuracy_.cut_short; }  ///< of them, cut short
+  std::uint64_t accuracyMissedBudgetLimited() const { return accuracy_.budget_limited; }  ///< of them, budget-held
   double worstAccuracyRatio() const { return accuracy_.worst; }
 
   /// A few lines for people: distance, energies, sliding, peaks, the models auto chose.
