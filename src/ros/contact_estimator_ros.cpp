@@ -431,9 +431,9 @@ void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWra
                                         " (BRUSH_FLAG_SUBSTEPS_TRUNCATED: a larger work_budget buys them)"
                                   : std::string()) +
                              (accuracy_missed_.budget_limited > 0
-                                  ? ", at a lattice the work budget held in " +
+                                  ? ", held back by the work budget in " +
                                         std::to_string(accuracy_missed_.budget_limited) +
-                                        " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget buys the finer one)"
+                                        " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget buys them)"
                                   : std::string());
     notes = notes.empty() ? text : notes + "; " + text;
   }

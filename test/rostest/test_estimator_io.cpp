@@ -556,7 +556,8 @@ TEST_F(EstimatorIo, AnAccuracyTargetMissedIsSaidInTheDiagnostics)
   EXPECT_TRUE(waitFor([&] {
     const auto it = diagnostics_.find(kNode.substr(1) + ": contact models");
     if (it == diagnostics_.end() || it->second.message.find("accuracy target missed") == std::string::npos ||
-        it->second.message.find("(BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget buys the finer one)") ==
+        it->second.message.find("held back by the work budget in ") == std::string::npos ||
+        it->second.message.find("(BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget buys them)") ==
             std::string::npos)
       return false;
     said = it->second.message;

@@ -226,9 +226,9 @@ TEST_F(BagAnalyze, SummaryAgainstClosedForms)
   // and how many of them the budget held (auto below the lattice or tolerance the target asks), with what buys them
   EXPECT_GT(missed.summary.accuracyMissedBudgetLimited(), 0u);
   EXPECT_LE(missed.summary.accuracyMissedBudgetLimited(), missed.summary.accuracyMissed());
-  EXPECT_NE(missed.summary.report().find("of them at a lattice the work budget held at " +
+  EXPECT_NE(missed.summary.report().find("of them held back by the work budget at " +
                                          std::to_string(missed.summary.accuracyMissedBudgetLimited()) +
-                                         " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget buys the finer one)"),
+                                         " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget buys them)"),
             std::string::npos)
       << missed.summary.report();
 

@@ -22,8 +22,8 @@ std::vector<std::string> describe(std::uint32_t flags)
                      "substeps coarser than accuracy wants, which error_estimate covers (coarser substeps: the "
                      "friction circle's, until the bristles then inside have left the patch)");
   if (flags & kBudgetLimited)
-    out.emplace_back("auto missed the accuracy target at a lattice the work budget holds: the finer one that would "
-                     "meet it does not fit work_budget (a larger budget buys it)");
+    out.emplace_back("auto missed the accuracy target where the work budget held it back (a coarser lattice, a shorter "
+                     "warm start or a looser steady answer than the target asks): a larger work_budget buys it");
   if (flags & kModelFault)
     out.emplace_back("the brush model failed (a defect: please report it with the input): no forces, its state reset");
   return out;

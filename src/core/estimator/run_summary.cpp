@@ -93,8 +93,8 @@ std::string RunSummary::report() const
     const std::tuple<std::uint64_t, const char*, const char*> held[] = {
       { accuracy_.cut_short, "cut short by the work budget at ",
         " (BRUSH_FLAG_SUBSTEPS_TRUNCATED: a larger work_budget buys them)" },
-      { accuracy_.budget_limited, "at a lattice the work budget held at ",
-        " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget buys the finer one)" },
+      { accuracy_.budget_limited, "held back by the work budget at ",
+        " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget buys them)" },
     };
     for (const auto& [count, what, buys] : held)
       if (count > 0)

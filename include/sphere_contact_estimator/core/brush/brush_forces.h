@@ -18,9 +18,9 @@ constexpr std::uint32_t kAccuracyNotMet = 1u << 4;       ///< error_estimate abo
 /// The model failed (threw: a defect, not an input it refuses): no forces (zero), the model's state reset;
 /// ContactEstimator::lastFault says what.
 constexpr std::uint32_t kModelFault = 1u << 5;
-/// auto, with kAccuracyNotMet: the finer lattice that would meet the target (twice the resolution, or the one the
-/// budget coarsened the lattice from) does not fit what the work budget leaves of the message; a larger work_budget
-/// buys it.
+/// auto, with kAccuracyNotMet: the work budget held the answer back in this update (the finer lattice a missed target
+/// asks for does not fit what it leaves, or the lattice was coarsened or a finer one dropped for it; a warm start
+/// short of its roll; a steady answer short of its tolerance); a larger work_budget buys it.
 constexpr std::uint32_t kBudgetLimited = 1u << 6;
 constexpr std::uint32_t kInvalidatingFlags = kStandstill | kNoSteadyStateTilt | kLinearSaturated | kModelFault;
 

@@ -19,8 +19,8 @@ struct AccuracyMisses
   /// of them, cut short (brush_flags::kSubstepsTruncated: the transient model's sliding steps or substeps past the
   /// budget), which a larger work_budget buys
   std::uint64_t cut_short = 0;
-  /// of them, auto's answers at a lattice the budget held (brush_flags::kBudgetLimited: the finer one that would meet
-  /// the target does not fit), which a larger work_budget buys too
+  /// of them, auto's answers the budget held back (brush_flags::kBudgetLimited: a coarser lattice, a shorter warm start
+  /// or a looser steady answer than the target asks), which a larger work_budget buys too
   std::uint64_t budget_limited = 0;
   void add(const ContactEstimateData& e);
 };
