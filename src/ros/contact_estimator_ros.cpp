@@ -434,6 +434,10 @@ void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWra
                                   ? ", held back by the work budget in " +
                                         std::to_string(accuracy_missed_.budget_limited) +
                                         " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget buys them)"
+                                  : std::string()) +
+                             (accuracy_missed_.standstill > 0
+                                  ? ", at standstill in " + std::to_string(accuracy_missed_.standstill) +
+                                        " (auto refines its lattice only while the patch rolls)"
                                   : std::string());
     notes = notes.empty() ? text : notes + "; " + text;
   }

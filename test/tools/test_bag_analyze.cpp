@@ -378,7 +378,8 @@ TEST_F(BagAnalyze, CommandLine)
   }
 }
 // The estimates of a bag analysed with the package's parameter file (its defaults: auto, eq. 4b), from `start` s.
-std::vector<sce::ContactEstimate> estimatesOf(const std::string& bag, double robot_mass, const char* law, double start)
+std::vector<sce::ContactEstimate> estimatesOf(const std::string& bag, double robot_mass, const char* law, double start,
+                                              sce::BagAnalysisResult* result = nullptr)
 {
   sce::BagAnalysisOptions o;
   o.input = bag;
@@ -388,7 +389,9 @@ std::vector<sce::ContactEstimate> estimatesOf(const std::string& bag, double rob
   sce::applyParameterFile(o.config, std::string(PACKAGE_SOURCE_DIR) + "/config/contact_estimator.yaml");
   o.config.robot_mass = robot_mass;
   sce::setParameter(o.config, "sliding_law", law);
-  sce::analyzeBag(o);
+  const sce::BagAnalysisResult analysed = sce::analyzeBag(o);
+  if (result)
+    *result = analysed;
   std::vector<sce::ContactEstimate> out;
   rosbag::Bag written(o.output);
   for (const rosbag::MessageInstance& m : rosbag::View(written, rosbag::TopicQuery("/contact_estimate")))
@@ -412,7 +415,21 @@ TEST_F(BagAnalyze, ParkedRobotsForcesFollowTheNoise)
                               Recording{ std::string(PACKAGE_SOURCE_DIR) + "/data/demo.bag", 5.0, 10.51 } })
     for (const char* law : { "coulomb", "rigid" })
     {
-      const std::vector<sce::ContactEstimate> e = estimatesOf(r.bag, r.robot_mass, law, r.start);
+      sce::BagAnalysisResult analysed;
+      const std::vector<sce::ContactEstimate> e = estimatesOf(r.bag, r.robot_mass, law, r.start, &analysed);
+      // why its answers miss the target: at standstill, where auto's lattice cannot refine (not the budget)
+      const sce::RunSummary& s = analysed.summary;
+      std::printf("%s, %s: target missed at %llu, at standstill %llu\n", r.bag.c_str(), law,
+                  static_cast<unsigned long long>(s.accuracyMissed()),
+                  static_cast<unsigned long long>(s.accuracyMissedStandstill()));
+      EXPECT_GT(s.accuracyMissedStandstill(), 0u) << r.bag;
+      EXPECT_EQ(s.accuracyMissedStandstill(), s.accuracyMissed()) << r.bag;
+      EXPECT_EQ(s.accuracyMissedBudgetLimited(), 0u) << r.bag;
+      if (s.accuracyMissed() > 0)
+        EXPECT_NE(s.report().find("of them at standstill at " + std::to_string(s.accuracyMissedStandstill()) +
+                                  " (auto refines its lattice only while the patch rolls)"),
+                  std::string::npos)
+            << s.report();
       ASSERT_GT(e.size(), 40u) << r.bag;
       int jumps = 0, within = 0;
       for (std::size_t i = 0; i < e.size(); ++i)

@@ -16,6 +16,7 @@ void AccuracyMisses::add(const ContactEstimateData& e)
   ++count;
   cut_short += (e.brush.flags & brush_flags::kSubstepsTruncated) != 0;
   budget_limited += (e.brush.flags & brush_flags::kBudgetLimited) != 0;
+  standstill += !(e.brush.flags & (brush_flags::kSubstepsTruncated | brush_flags::kBudgetLimited)) && !e.slips_defined;
   if (e.brush_target > 0.0)
     worst = std::max(worst, e.brush.error_estimate / e.brush_target);
 }
@@ -95,6 +96,7 @@ std::string RunSummary::report() const
         " (BRUSH_FLAG_SUBSTEPS_TRUNCATED: a larger work_budget buys them)" },
       { accuracy_.budget_limited, "held back by the work budget at ",
         " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget buys them)" },
+      { accuracy_.standstill, "at standstill at ", " (auto refines its lattice only while the patch rolls)" },
     };
     for (const auto& [count, what, buys] : held)
       if (count > 0)

@@ -22,6 +22,9 @@ struct AccuracyMisses
   /// of them, auto's answers the budget held back (brush_flags::kBudgetLimited: a coarser lattice, a shorter warm start
   /// or a looser steady answer than the target asks), which a larger work_budget buys too
   std::uint64_t budget_limited = 0;
+  /// of them, neither and at standstill (slips undefined: auto refines its lattice only while the patch rolls, and a
+  /// parked robot's lattice keeps what it rolled in with)
+  std::uint64_t standstill = 0;
   void add(const ContactEstimateData& e);
 };
 
@@ -57,6 +60,7 @@ public:
   std::uint64_t accuracyMissed() const { return accuracy_.count; }
   std::uint64_t accuracyMissedCutShort() const { return accuracy_.cut_short; }  ///< of them, cut short
   std::uint64_t accuracyMissedBudgetLimited() const { return accuracy_.budget_limited; }  ///< of them, budget-held
+  std::uint64_t accuracyMissedStandstill() const { return accuracy_.standstill; }  ///< of the rest, at standstill
   double worstAccuracyRatio() const { return accuracy_.worst; }
 
   /// A few lines for people: distance, energies, sliding, peaks, the models auto chose.
