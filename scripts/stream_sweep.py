@@ -8,8 +8,8 @@ parked) at 30, 100 or 1000 Hz with the demo's noise or up to twice it; demo.laun
 stream_benchmark.py compares every message with the converged reference run of the same stream. A bag already in the
 output folder is reused. The summary counts, over all streams: unflagged messages over their target and estimates
 below their error (both beyond the reference's own difference; and beyond its own error estimate, a bound; and, for
-those between the two, against resolution 256 with its estimate as the slack), at the default target and at 0.1 %, and
-the work budget's heaviest messages.
+those between the two, against resolution 256 with its estimate as the slack), at the default target and at 0.1 %,
+the work budget's heaviest messages, and why the answers were flagged (held by the work budget, at standstill).
 
 Usage: stream_sweep.py --bag-analyze PATH --dir FOLDER [--streams 24] [--seed 1000] [--set NAME=VALUE ...] [--out JSON]
 (--set: a parameter of every robot's file beyond the drawn ones, for the run and its references alike, e.g. tilt=true)
@@ -121,11 +121,13 @@ def main():
                "messages": s["messages"], "not_compared": s["not_compared"], "default": s["all"], "strict": s["strict"]}
         streams.append(row)
         d, q = s["all"], s["strict"]
-        print("seed %d, %d Hz, a %.1f mm, k %.2g, %.1f kg, mu %.2f, %s: %d messages; flagged %.0f %%; over the target"
+        print("seed %d, %d Hz, a %.1f mm, k %.2g, %.1f kg, mu %.2f, %s: %d messages; flagged %.0f %% (%d held by the"
+              " work budget, %d at standstill); over the target"
               " %d / %d, estimate below the error %d (%d beyond the reference's estimate, %d at 256) / %d (%d, %d);"
               " max %.0f us, work max %.0f"
               % (seed, rate, 1e3 * p["patch_radius"], p["bristle_stiffness"], p["robot_mass"], p["friction"],
-                 p["pressure"], s["messages"], 100.0 * d["flagged"] / s["messages"], d["unflagged_over_target"],
+                 p["pressure"], s["messages"], 100.0 * d["flagged"] / s["messages"], d.get("flagged_budget_limited", 0),
+                 d.get("flagged_standstill", 0), d["unflagged_over_target"],
                  q["unflagged_over_target"], d["estimate_short"], d["estimate_short_resolved"],
                  d["estimate_short_confirmed_finer"], q["estimate_short"], q["estimate_short_resolved"],
                  q["estimate_short_confirmed_finer"], d["time_us"]["max"], d["work"]["max"]), file=sys.stderr, flush=True)
@@ -138,6 +140,9 @@ def main():
                                   ("estimate_short_resolved_strict", "strict", "estimate_short_resolved"),
                                   ("estimate_short_at_256", "default", "estimate_short_confirmed_finer"),
                                   ("estimate_short_at_256_strict", "strict", "estimate_short_confirmed_finer"))}
+    # why the default pass's answers were flagged (stream_benchmark.py: BRUSH_FLAG_BUDGET_LIMITED, standstill)
+    for k in ("flagged", "flagged_budget_limited", "flagged_substeps_truncated", "flagged_standstill"):
+        total[k] = sum(s["default"].get(k, 0) for s in streams)
     total["streams"] = len(streams)
     total["messages"] = sum(s["messages"] for s in streams)
     total["compared"] = sum(s["messages"] - s["not_compared"] for s in streams)
