@@ -151,8 +151,8 @@ def summarise(rows):
     per_unit = [1e3 * t / w for t, w in zip(times, works) if w >= HEAVY_WORK]
     flagged = [r for r in rows if int(r["brush_flags"]) & FLAG_ACCURACY_NOT_MET]
     truncated = sum(1 for r in rows if int(r["brush_flags"]) & FLAG_SUBSTEPS_TRUNCATED)
-    # why the others were flagged: auto held by the budget (a larger one buys them), or at standstill (slips undefined:
-    # no finer lattice fills until the robot rolls)
+    # why the others were flagged: auto held by the budget (a larger one lets it refine), or at standstill (slips
+    # undefined: no finer lattice fills until the robot rolls)
     held = sum(1 for r in flagged if int(r["brush_flags"]) & FLAG_BUDGET_LIMITED)
     standstill = sum(1 for r in flagged if not int(r["brush_flags"]) & (FLAG_BUDGET_LIMITED | FLAG_SUBSTEPS_TRUNCATED)
                      and r["slips_defined"] in ("0", "false", "False"))

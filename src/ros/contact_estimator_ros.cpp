@@ -433,7 +433,7 @@ void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWra
                              (accuracy_missed_.budget_limited > 0
                                   ? ", held back by the work budget in " +
                                         std::to_string(accuracy_missed_.budget_limited) +
-                                        " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget buys them)"
+                                        " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget lets auto refine)"
                                   : std::string()) +
                              (accuracy_missed_.standstill > 0
                                   ? ", at standstill in " + std::to_string(accuracy_missed_.standstill) +

@@ -574,11 +574,11 @@ BrushForces noisyMessage(BrushAuto& model, std::mt19937_64& rng, std::normal_dis
 TEST(BrushAuto, WhereTheBudgetHoldsAMissedTargetTheAnswerSaysSo)
 {
   // The default robot (config/contact_estimator.yaml's a = 1 cm, 5 kg, mu 0.8, k = 2e8 N/m^3, resolution 32, a 1 %
-  // target) pivoting as data/manoeuvre.bag does (0.3 m/s, lateral slip 0.08, the shell spinning at 12 rad/s, the demo's
-  // noise, 100 Hz). Within the default budget (what the covariance leaves of 1e5) resolution 32 misses the target at
-  // times, and 64, which would meet it, does not fit: those answers carry kBudgetLimited beside kAccuracyNotMet (its
-  // promise: a larger work_budget buys them). With a budget that fits 64 the same stream refines, meets the target at
-  // those messages, and no answer says the budget held it.
+  // target) pivoting as data/manoeuvre.bag does (0.3 m/s, lateral slip 0.08, the shell spinning at 12 rad/s, the
+  // demo's noise, 100 Hz). Within the default budget (what the covariance leaves of 1e5) resolution 32 misses the
+  // target at times, and 64, which would meet it, does not fit: those answers carry kBudgetLimited beside
+  // kAccuracyNotMet (a larger work_budget lets auto refine). With a budget that fits 64 the same stream refines, meets
+  // the target at those messages, and no answer says the budget held it.
   BrushParameters p;
   p.a = 0.01, p.F_z = 5.0 * 9.81, p.mu = 0.8, p.k = 2e8;
   p.resolution = 32;

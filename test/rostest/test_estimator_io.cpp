@@ -549,7 +549,8 @@ TEST_F(EstimatorIo, AnAccuracyTargetMissedIsSaidInTheDiagnostics)
     }
   }
   EXPECT_GT(flagged, 0) << "a target of 1e-6 within 10^4 units was met: the test does not test the diagnostic";
-  // auto at the lattice and tolerance the budget allows: what holds the target back is said, with what buys it
+  // auto at the lattice and tolerance the budget allows: what holds the target back is said, with what a larger budget
+  // does
   EXPECT_GT(held, 0);
   std::string said;
   double worst = 0.0;
@@ -557,7 +558,7 @@ TEST_F(EstimatorIo, AnAccuracyTargetMissedIsSaidInTheDiagnostics)
     const auto it = diagnostics_.find(kNode.substr(1) + ": contact models");
     if (it == diagnostics_.end() || it->second.message.find("accuracy target missed") == std::string::npos ||
         it->second.message.find("held back by the work budget in ") == std::string::npos ||
-        it->second.message.find("(BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget buys them)") ==
+        it->second.message.find("(BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget lets auto refine)") ==
             std::string::npos)
       return false;
     said = it->second.message;

@@ -223,12 +223,13 @@ TEST_F(BagAnalyze, SummaryAgainstClosedForms)
                                          std::to_string(missed.summary.accuracyMissed()) + " estimates"),
             std::string::npos)
       << missed.summary.report();
-  // and how many of them the budget held (auto below the lattice or tolerance the target asks), with what buys them
+  // and how many of them the budget held (auto below the lattice or tolerance the target asks), with what a larger
+  // budget does
   EXPECT_GT(missed.summary.accuracyMissedBudgetLimited(), 0u);
   EXPECT_LE(missed.summary.accuracyMissedBudgetLimited(), missed.summary.accuracyMissed());
   EXPECT_NE(missed.summary.report().find("of them held back by the work budget at " +
                                          std::to_string(missed.summary.accuracyMissedBudgetLimited()) +
-                                         " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget buys them)"),
+                                         " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget lets auto refine)"),
             std::string::npos)
       << missed.summary.report();
 

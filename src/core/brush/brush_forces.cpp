@@ -23,7 +23,8 @@ std::vector<std::string> describe(std::uint32_t flags)
                      "friction circle's, until the bristles then inside have left the patch)");
   if (flags & kBudgetLimited)
     out.emplace_back("auto missed the accuracy target where the work budget held it back (a coarser lattice, a shorter "
-                     "warm start or a looser steady answer than the target asks): a larger work_budget buys it");
+                     "warm start or a looser steady answer than the target asks): a larger work_budget lets it "
+                     "refine");
   if (flags & kModelFault)
     out.emplace_back("the brush model failed (a defect: please report it with the input): no forces, its state reset");
   return out;

@@ -90,12 +90,12 @@ std::string RunSummary::report() const
                   "BRUSH_FLAG_ACCURACY_NOT_MET)\n",
                   static_cast<unsigned long long>(accuracy_.count), share(accuracy_.count), accuracy_.worst);
     out += buffer;
-    // of them, those the budget held back, and what buys them
+    // of them, those the budget held back, and what a larger one does
     const std::tuple<std::uint64_t, const char*, const char*> held[] = {
       { accuracy_.cut_short, "cut short by the work budget at ",
         " (BRUSH_FLAG_SUBSTEPS_TRUNCATED: a larger work_budget buys them)" },
       { accuracy_.budget_limited, "held back by the work budget at ",
-        " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget buys them)" },
+        " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget lets auto refine)" },
       { accuracy_.standstill, "at standstill at ", " (auto refines its lattice only while the patch rolls)" },
     };
     for (const auto& [count, what, buys] : held)

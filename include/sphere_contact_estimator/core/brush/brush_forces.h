@@ -20,7 +20,8 @@ constexpr std::uint32_t kAccuracyNotMet = 1u << 4;       ///< error_estimate abo
 constexpr std::uint32_t kModelFault = 1u << 5;
 /// auto, with kAccuracyNotMet: the work budget held the answer back in this update (the finer lattice a missed target
 /// asks for does not fit what it leaves, or the lattice was coarsened or a finer one dropped for it; a warm start
-/// short of its roll; a steady answer short of its tolerance); a larger work_budget buys it.
+/// short of its roll; a steady answer short of its tolerance). A larger work_budget lets auto refine: a promise of a
+/// finer answer, not of the target (a finer lattice answers once it has rolled the longest path, and may still miss).
 constexpr std::uint32_t kBudgetLimited = 1u << 6;
 constexpr std::uint32_t kInvalidatingFlags = kStandstill | kNoSteadyStateTilt | kLinearSaturated | kModelFault;
 

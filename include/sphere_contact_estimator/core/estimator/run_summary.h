@@ -20,7 +20,7 @@ struct AccuracyMisses
   /// budget), which a larger work_budget buys
   std::uint64_t cut_short = 0;
   /// of them, auto's answers the budget held back (brush_flags::kBudgetLimited: a coarser lattice, a shorter warm start
-  /// or a looser steady answer than the target asks), which a larger work_budget buys too
+  /// or a looser steady answer than the target asks), where a larger work_budget lets auto refine
   std::uint64_t budget_limited = 0;
   /// of them, neither and at standstill (slips undefined: auto refines its lattice only while the patch rolls, and a
   /// parked robot's lattice keeps what it rolled in with)
