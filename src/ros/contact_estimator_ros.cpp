@@ -421,24 +421,14 @@ void ContactEstimatorRos::diagnoseModels(diagnostic_updater::DiagnosticStatusWra
   {
     char worst[32];
     std::snprintf(worst, sizeof worst, "%.3g", accuracy_missed_.worst);
-    const std::string text = "accuracy target missed in " +
-                             std::to_string(accuracy_missed_.count) + " of " + std::to_string(since_report_) +
-                             " estimates (error estimate up to " + worst +
-                             " times the target: BRUSH_FLAG_ACCURACY_NOT_MET)" +
-                             (accuracy_missed_.cut_short > 0
-                                  ? ", of them cut short by the work budget in " +
-                                        std::to_string(accuracy_missed_.cut_short) +
-                                        " (BRUSH_FLAG_SUBSTEPS_TRUNCATED: a larger work_budget buys them)"
-                                  : std::string()) +
-                             (accuracy_missed_.budget_limited > 0
-                                  ? ", held back by the work budget in " +
-                                        std::to_string(accuracy_missed_.budget_limited) +
-                                        " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget lets auto refine)"
-                                  : std::string()) +
-                             (accuracy_missed_.standstill > 0
-                                  ? ", at standstill in " + std::to_string(accuracy_missed_.standstill) +
-                                        " (auto refines its lattice only while the patch rolls)"
-                                  : std::string());
+    std::string text = "accuracy target missed in " + std::to_string(accuracy_missed_.count) + " of " +
+                       std::to_string(since_report_) + " estimates (error estimate up to " + worst +
+                       " times the target: BRUSH_FLAG_ACCURACY_NOT_MET)";
+    const auto reasons = accuracy_missed_.reasons();  // (worded as bag_analyze's summary words them)
+    for (std::size_t i = 0; i < reasons.size(); ++i)
+      if (reasons[i].count > 0)
+        text += std::string(i == 0 ? ", of them " : ", ") + reasons[i].what + " in " +
+                std::to_string(reasons[i].count) + reasons[i].hint;
     notes = notes.empty() ? text : notes + "; " + text;
   }
   accuracy_missed_ = {};

@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -123,16 +124,21 @@ int compareWriters(const std::string& path, std::size_t n)
               n, 1e6 * rosbag_seconds / static_cast<double>(n), 1e6 * ours_seconds / static_cast<double>(n));
   return 0;
 }
-// The node's brush_model number of a model's name ("off" included: parseBrushModelKind takes only models to run), or
-// -1, said on stderr.
+// The node's brush_model number of a model's name, as the node, dynparam and bag_analyze read it (setParameter: the
+// cfg's enum, any case), or -1, said on stderr.
 int brushModel(const std::string& name)
 {
-  if (name == sce::toString(sce::BrushModelKind::Off))
-    return 0;
-  if (const auto kind = sce::parseBrushModelKind(name))
-    return static_cast<int>(*kind);
-  std::fprintf(stderr, "replay_benchmark: unknown model %s\n", name.c_str());
-  return -1;
+  sce::ContactEstimatorConfig config;
+  try
+  {
+    sce::setParameter(config, "brush_model", name);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    std::fprintf(stderr, "replay_benchmark: %s\n", e.what());
+    return -1;
+  }
+  return config.brush_model;
 }
 
 // The recorded bags through analyzeBag with the parameter file's settings, or with each of `models` (empty: the file's

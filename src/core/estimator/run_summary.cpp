@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
-#include <tuple>
 
 namespace sphere_contact_estimator
 {
@@ -19,6 +18,15 @@ void AccuracyMisses::add(const ContactEstimateData& e)
   standstill += !(e.brush.flags & (brush_flags::kSubstepsTruncated | brush_flags::kBudgetLimited)) && !e.slips_defined;
   if (e.brush_target > 0.0)
     worst = std::max(worst, e.brush.error_estimate / e.brush_target);
+}
+
+std::array<AccuracyMisses::Reason, 3> AccuracyMisses::reasons() const
+{
+  return { { { cut_short, "cut short by the work budget",
+               " (BRUSH_FLAG_SUBSTEPS_TRUNCATED: a larger work_budget buys them)" },
+             { budget_limited, "held back by the work budget",
+               " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget lets auto refine)" },
+             { standstill, "at standstill", " (auto refines its lattice only while the patch rolls)" } } };
 }
 
 void RunSummary::add(const ContactEstimateData& e)
@@ -90,17 +98,9 @@ std::string RunSummary::report() const
                   "BRUSH_FLAG_ACCURACY_NOT_MET)\n",
                   static_cast<unsigned long long>(accuracy_.count), share(accuracy_.count), accuracy_.worst);
     out += buffer;
-    // of them, those the budget held back, and what a larger one does
-    const std::tuple<std::uint64_t, const char*, const char*> held[] = {
-      { accuracy_.cut_short, "cut short by the work budget at ",
-        " (BRUSH_FLAG_SUBSTEPS_TRUNCATED: a larger work_budget buys them)" },
-      { accuracy_.budget_limited, "held back by the work budget at ",
-        " (BRUSH_FLAG_BUDGET_LIMITED: a larger work_budget lets auto refine)" },
-      { accuracy_.standstill, "at standstill at ", " (auto refines its lattice only while the patch rolls)" },
-    };
-    for (const auto& [count, what, buys] : held)
-      if (count > 0)
-        out += std::string("                        of them ") + what + std::to_string(count) + buys + "\n";
+    for (const AccuracyMisses::Reason& r : accuracy_.reasons())
+      if (r.count > 0)
+        out += std::string("                        of them ") + r.what + " at " + std::to_string(r.count) + r.hint + "\n";
   }
   else if (models_used_[0] < estimates_)
     out += "  brush accuracy        target met at every estimate\n";

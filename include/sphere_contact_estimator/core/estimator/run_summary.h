@@ -26,6 +26,15 @@ struct AccuracyMisses
   /// parked robot's lattice keeps what it rolled in with)
   std::uint64_t standstill = 0;
   void add(const ContactEstimateData& e);
+  /// The three counts above with what held them back and what would help, worded once for bag_analyze's summary and
+  /// the node's diagnostic
+  struct Reason
+  {
+    std::uint64_t count;
+    const char* what;
+    const char* hint;
+  };
+  std::array<Reason, 3> reasons() const;
 };
 
 /// What a run did, accumulated over its estimates (bag_analyze's summary). Integrals use the trapezoid rule
