@@ -100,7 +100,8 @@ std::string RunSummary::report() const
     out += buffer;
     for (const AccuracyMisses::Reason& r : accuracy_.reasons())
       if (r.count > 0)
-        out += std::string("                        of them ") + r.what + " at " + std::to_string(r.count) + r.hint + "\n";
+        out += std::string("                        of them ") + r.what + " at " + std::to_string(r.count) + r.hint +
+               "\n";
   }
   else if (models_used_[0] < estimates_)
     out += "  brush accuracy        target met at every estimate\n";
