@@ -12,8 +12,10 @@ cd "$WS/build"
 rm -rf "test_results/$PKG"  # stale XML would be counted again
 log "running the tests"
 rc=0
-# one at a time: the rostests measure rates and latencies, which a second test running beside them skews
-ctest --output-on-failure --no-tests=error || rc=$?
+# The gtest binaries (nothing in them is timed) side by side, one per core; then the rostests one at a time: they
+# measure rates and latencies, which a second test running beside them skews
+ctest --output-on-failure --no-tests=error -j"$(nproc)" -E _rostest_ || rc=$?
+ctest --output-on-failure --no-tests=error -R _rostest_ || rc=$?
 catkin_test_results "test_results/$PKG" >/dev/null || { [ "$rc" -ne 0 ] || rc=1; }
 # One line over every test case (ctest counts binaries; catkin_test_results counts gtest cases twice).
 /usr/bin/python3 - "test_results/$PKG" <<'PY' || true

@@ -11,7 +11,7 @@ APT_PACKAGES+=(llvm-14)  # llvm-symbolizer for the frames of the dlopen'ed nodel
 
 install_deps
 B="${WS}_tsan"
-FLAGS="-fsanitize=thread -fno-omit-frame-pointer -g -O1"
+FLAGS="-fsanitize=thread -fno-omit-frame-pointer -g1 -O1"  # -g1: the reports' line tables, a shorter build
 log "building the nodelet and the load test with ThreadSanitizer in $B"
 cmake -S "$REPO" -B "$B" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=None -DCATKIN_ENABLE_TESTING=ON \
   -DCMAKE_CXX_FLAGS="$FLAGS" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" \
