@@ -112,10 +112,15 @@ protected:
   std::mutex mutex_;  // guards what the callbacks fill
   ros::NodeHandle nh_;
   ros::Publisher odom_pub_;
-  ros::Subscriber estimate_sub_, diag_sub_;
   std::vector<sce::ContactEstimate> estimates_;
   std::map<std::string, diagnostic_msgs::DiagnosticStatus> diagnostics_;
   int diagnostics_count_ = 0;  // reports received
+  // After what their callbacks fill, so that they are shut down first (members go in reverse order; a subscriber's
+  // shutdown waits for its callback in progress). Declared before, a diagnostics report or a late estimate that
+  // arrived while a test's fixture was torn down wrote into the destroyed map or vector on the spinner's thread:
+  // "free(): corrupted unsorted chunks", and the binary died without results (once in CI, after
+  // HostileInputHasADefinedOutcome)
+  ros::Subscriber estimate_sub_, diag_sub_;
   std::unique_ptr<dynamic_reconfigure::Client<sce::ContactEstimatorConfig>> client_;
   sce::ContactEstimatorConfig config_;
 };
