@@ -643,6 +643,37 @@ TEST(BrushAuto, ALagCheckNeverCoarsensALatticeWhoseStepFits)
   EXPECT_EQ(lowest, p.resolution);
 }
 
+TEST(BrushAuto, ALagCheckThatKeepsRunningOutOfRoomIsTriedEverLessOften)
+{
+  // The default robot pivoting as data/manoeuvre.bag does (0.3 m/s, lateral slip 0.08, the shell spinning at 12 rad/s,
+  // the demo's noise, 100 Hz) at the default 1 % target, with what the covariance leaves of the default budget. Beside
+  // the lattice's step (about 70 k units) a lag check cannot finish its steady evaluation (it needs more than the
+  // 20-30 k left): each one spends what is left and gives no verdict. After such a check the next waits 4, 8 and then
+  // 16 patch radii of rolling, not 2 every time. A check's message spends what the lattice left: the messages within a
+  // granularity of the budget count them, 5 of the 590 here (34 when every check waited 2 radii; along the recording
+  // the pivot's p99 work fell from 88 k units to 73 k).
+  BrushParameters p;
+  p.a = 0.01, p.F_z = 5.0 * 9.81, p.mu = 0.8, p.k = 2e8;
+  p.resolution = 32;
+  p.accuracy_target = 1e-2;
+  BrushAuto model(p);
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  const long budget = 90000;
+  constexpr int kMessages = 600;  // 1.8 m: 90 transits
+  int full = 0, transient = 0;
+  for (int i = 0; i < kMessages; ++i)
+  {
+    const BrushForces f = noisyMessage(model, rng, noise, budget, 0.005, 0.3, { 0.0, 0.08 }, 12.0);
+    transient += model.lastModel() == BrushModelKind::Transient;
+    if (i >= 10)
+      full += f.work > budget - BrushModel::kWorkGranularity;
+  }
+  std::printf("pivot at 1 %%: %d of %d messages transient, %d spent the budget\n", transient, kMessages, full);
+  EXPECT_GT(transient, kMessages - 20);
+  EXPECT_LE(full, 13);  // checks after 2, 6 and 14 radii, then every 16: at most 13 over the 180 radii rolled
+}
+
 TEST(BrushAuto, ALatticeTheBudgetCoarsenedComesBackOnceItFitsAgain)
 {
   // A random robot of the stream sweep (seed 1253: a = 25 mm, 4.9 kg, mu 1.09, k = 3.2e8 N/m^3, parabolic; resolution

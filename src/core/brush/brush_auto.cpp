@@ -112,6 +112,7 @@ void BrushAuto::reset()
   have_check_ = false;
   lag_travel_ = 0.0;
   check_work_ = 0;
+  checks_short_ = 0;
   have_rolling_ = false;
   offset_ = BrushForces{};
   answered_ = false;
@@ -326,6 +327,7 @@ BrushAuto::SteadyCheck BrushAuto::checkSteady(const ContactKinematics& kin, cons
     lag_->reset();
     have_check_ = false;
     lag_travel_ = 0.0;
+    checks_short_ = 0;
     return c;
   }
   if (p_.tilt && std::abs(s.phi_gamma) * p_.a > 1.0)
@@ -352,9 +354,9 @@ BrushAuto::SteadyCheck BrushAuto::checkSteady(const ContactKinematics& kin, cons
     check_room = std::min(check_room, remaining() - lattices - kWorkGranularity);
   }
   const double since = lag_travel_ + s.V_r * dt;
-  // (waiting for room for a transit at most: a check that ran out of half of what was left would otherwise wait for
-  // good, and leaving with it)
-  const bool no_room = evaluates && check_work_ > check_room && since < kFarLagStride * p_.a;
+  // (waiting for room for a transit at most, or a few after checks that ran out of it, roomWait: a check that ran out
+  // of half of what was left would otherwise wait for good, and leaving with it)
+  const bool no_room = evaluates && check_work_ > check_room && since < roomWait() * p_.a;
   const bool within_stride = !last_check_.steady && since < stride * p_.a;
   if (in_transient_ && have_check_ && !c.renewed && (no_room || within_stride))
   {
@@ -391,6 +393,8 @@ BrushAuto::SteadyCheck BrushAuto::checkSteady(const ContactKinematics& kin, cons
     stretch = a_phi_gamma < 1.0 ? std::asin(a_phi_gamma) / a_phi_gamma : 0.5 * boost::math::double_constants::pi;
   const bool evaluated = stepLag(s, sigma, frame, target, c.steady, travel / stretch, std::max(check_room, 1L));
   c.lag = limit > 0.0 ? lag_->lag() / limit : 0.0;
+  if (in_transient_)
+    checks_short_ = evaluated ? 0 : std::min(checks_short_ + 1, kMaxChecksShort);
   if (!(c.lag <= kLeavingLag * target) || (in_transient_ && !evaluated))
     c.steady = false;  // (a check that ran out of its room in the transient model gives no verdict: it stays)
   last_check_ = c;
