@@ -831,8 +831,10 @@ void BrushTransient::gather(LatticeSums& g) const
         g.utilisation2 = std::max(g.utilisation2, 1.0);
       else if (bound > 0.0)
         g.utilisation2 = std::max(g.utilisation2, u.squaredNorm() / (bound * bound));
-      // plain: cellSum's weight is 1 and its cell u on both lattices, and the motion is not needed
-      const bool plain = !(r2 > inner2 || (slides && slip_travel_[p] < 2.0 * h_));
+      // plain: cellSum's weight is 1 and its cell u on both lattices, and the motion is not needed. Inside a - 2h only an
+      // onset's jump changes the cell: one that did not jump (eq. 4b's are continuous) is plain however lately it began
+      // to slide (spinning in place or parked a message rolls micrometres, and the bristles stayed "lately" for good)
+      const bool plain = !(r2 > inner2 || (slides && slip_travel_[p] < 2.0 * h_ && jump_[p].squaredNorm() > 0.0));
       const int sub = 1 + (i & 1) + 2 * (j & 1);
       if (plain)
       {
