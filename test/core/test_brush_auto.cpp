@@ -571,6 +571,23 @@ BrushForces noisyMessage(BrushAuto& model, std::mt19937_64& rng, std::normal_dis
   return f;
 }
 
+// The default robot (config/contact_estimator.yaml: a = 1 cm, 5 kg, mu 0.8, k = 2e8 N/m^3, resolution 32) at a target.
+BrushParameters defaultRobot(double target)
+{
+  BrushParameters p;
+  p.a = 0.01, p.F_z = 5.0 * 9.81, p.mu = 0.8, p.k = 2e8;
+  p.resolution = 32;
+  p.accuracy_target = target;
+  return p;
+}
+
+// One message of its pivot as data/manoeuvre.bag's (0.3 m/s, lateral slip 0.08, the shell spinning at 12 rad/s, the
+// demo's noise, 100 Hz) within `budget`.
+BrushForces pivotMessage(BrushAuto& model, std::mt19937_64& rng, std::normal_distribution<double>& noise, long budget)
+{
+  return noisyMessage(model, rng, noise, budget, 0.005, 0.3, { 0.0, 0.08 }, 12.0);
+}
+
 TEST(BrushAuto, WhereTheBudgetHoldsAMissedTargetTheAnswerSaysSo)
 {
   // The default robot (config/contact_estimator.yaml's a = 1 cm, 5 kg, mu 0.8, k = 2e8 N/m^3, resolution 32, a 1 %
@@ -579,10 +596,7 @@ TEST(BrushAuto, WhereTheBudgetHoldsAMissedTargetTheAnswerSaysSo)
   // target at times, and 64, which would meet it, does not fit: those answers carry kBudgetLimited beside
   // kAccuracyNotMet (a larger work_budget lets auto refine). With a budget that fits 64 the same stream refines, meets
   // the target at those messages, and no answer says the budget held it.
-  BrushParameters p;
-  p.a = 0.01, p.F_z = 5.0 * 9.81, p.mu = 0.8, p.k = 2e8;
-  p.resolution = 32;
-  p.accuracy_target = 1e-2;
+  const BrushParameters p = defaultRobot(1e-2);
   std::vector<std::uint32_t> flags[2];
   int budget_limited[2] = {}, flagged[2] = {};
   const long budgets[2] = { 90000, 2000000 };
@@ -593,7 +607,7 @@ TEST(BrushAuto, WhereTheBudgetHoldsAMissedTargetTheAnswerSaysSo)
     std::normal_distribution<double> noise(0.0, 1.0);
     for (int i = 0; i < 200; ++i)
     {
-      const BrushForces f = noisyMessage(model, rng, noise, budgets[b], 0.005, 0.3, { 0.0, 0.08 }, 12.0);
+      const BrushForces f = pivotMessage(model, rng, noise, budgets[b]);
       flags[b].push_back(f.flags);
       budget_limited[b] += (f.flags & brush_flags::kBudgetLimited) != 0;
       flagged[b] += (f.flags & brush_flags::kAccuracyNotMet) != 0;
@@ -620,17 +634,14 @@ TEST(BrushAuto, ALagCheckNeverCoarsensALatticeWhoseStepFits)
   // its resolution. (Before, the check took half of what was left; the lattice, coarsened to 8 and then refined to 16,
   // stayed there, since a finer one needs eight times its step.) Every update within its budget, every estimate
   // finite and flagged above the target.
-  BrushParameters p;
-  p.a = 0.01, p.F_z = 5.0 * 9.81, p.mu = 0.8, p.k = 2e8;
-  p.resolution = 32;
-  p.accuracy_target = 1e-3;
+  const BrushParameters p = defaultRobot(1e-3);
   BrushAuto model(p);
   std::mt19937_64 rng(3);
   std::normal_distribution<double> noise(0.0, 1.0);
   int transient = 0, lowest = p.resolution;
   for (int i = 0; i < 200; ++i)
   {
-    const BrushForces f = noisyMessage(model, rng, noise, 90000, 0.005, 0.3, { 0.0, 0.08 }, 12.0);
+    const BrushForces f = pivotMessage(model, rng, noise, 90000);
     ASSERT_TRUE(std::isfinite(f.error_estimate)) << "message " << i;
     if (model.lastModel() == BrushModelKind::Transient)
     {
@@ -652,10 +663,7 @@ TEST(BrushAuto, ALagCheckThatKeepsRunningOutOfRoomIsTriedEverLessOften)
   // 16 patch radii of rolling, not 2 every time. A check's message spends what the lattice left: the messages within a
   // granularity of the budget count them, 5 of the 590 here (34 when every check waited 2 radii; along the recording
   // the pivot's p99 work fell from 88 k units to 73 k).
-  BrushParameters p;
-  p.a = 0.01, p.F_z = 5.0 * 9.81, p.mu = 0.8, p.k = 2e8;
-  p.resolution = 32;
-  p.accuracy_target = 1e-2;
+  const BrushParameters p = defaultRobot(1e-2);
   BrushAuto model(p);
   std::mt19937_64 rng(7);
   std::normal_distribution<double> noise(0.0, 1.0);
@@ -664,7 +672,7 @@ TEST(BrushAuto, ALagCheckThatKeepsRunningOutOfRoomIsTriedEverLessOften)
   int full = 0, transient = 0;
   for (int i = 0; i < kMessages; ++i)
   {
-    const BrushForces f = noisyMessage(model, rng, noise, budget, 0.005, 0.3, { 0.0, 0.08 }, 12.0);
+    const BrushForces f = pivotMessage(model, rng, noise, budget);
     transient += model.lastModel() == BrushModelKind::Transient;
     if (i >= 10)
       full += f.work > budget - BrushModel::kWorkGranularity;
