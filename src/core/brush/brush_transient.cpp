@@ -509,6 +509,30 @@ double BrushTransient::timeTolerance() const
   return kTimeTolerance * bound / (static_cast<double>(p_.resolution) * p_.resolution);
 }
 
+struct BrushTransient::Coupling
+{
+  // du/dt = w - [A_psi_dot u] over a time t with the drive w held: R(spin t) u + Int_0^t R(spin tau) dtau w. Every
+  // bristle inside throughout a substep takes it over the substep, a sliding one over its halves too: their cosines and
+  // sines once per substep (they were a sixth of a tilted message's instructions), the same numbers as before.
+  Coupling(double spin, double dt)
+    : spin(spin), full(dt), R_full(rotation(spin * dt)), S_full(rotationIntegral(spin, dt))
+    , R_half(rotation(spin * (0.5 * dt))), S_half(rotationIntegral(spin, 0.5 * dt))
+  {
+  }
+  Eigen::Vector2d operator()(const Eigen::Vector2d& u, const Eigen::Vector2d& w, double t) const
+  {
+    if (spin == 0.0)
+      return u + t * w;
+    if (t == full)
+      return R_full * u + S_full * w;
+    if (t == 0.5 * full)
+      return R_half * u + S_half * w;
+    return rotation(spin * t) * u + rotationIntegral(spin, t) * w;
+  }
+  double spin, full;
+  Eigen::Matrix2d R_full, S_full, R_half, S_half;
+};
+
 void BrushTransient::substep(const ContactKinematics& kin, double dt)
 {
   // Rigid motion of the bristle roots over dt (eq. 31): dx/dt = -V_r - A_omega_gamma x with
@@ -527,6 +551,7 @@ void BrushTransient::substep(const ContactKinematics& kin, double dt)
   // Bristle ODE du/dt = w(x) - [A_psi_dot u]: exact rotation at rate -psi_dot of the coupling, drive at
   // the midpoint of the time spent inside the patch.
   const double spin = p_.tilt ? -kin.psi_dot : 0.0;
+  const Coupling coupling(spin, dt);
   const double a2 = p_.a * p_.a;
   const FrictionCap cap(p_);
   const bool coulomb = p_.sliding_law == SlidingLaw::Coulomb;
@@ -561,7 +586,7 @@ void BrushTransient::substep(const ContactKinematics& kin, double dt)
       const double travel = (x1 - x_start).norm();
       if (coulomb)
       {
-        coulombStep(kin, cap, spin, p, x_start, x1, t, was_sliding);
+        coulombStep(kin, cap, coupling, p, x_start, x1, t, was_sliding);
         continue;
       }
       if (was_sliding)
@@ -582,10 +607,7 @@ void BrushTransient::substep(const ContactKinematics& kin, double dt)
       }
       const Eigen::Vector2d x_mid = 0.5 * (x_start + x1);
       const double over_start = u.norm() - p_.mu * cap.qz(x_start.squaredNorm()) / p_.k;  // <= 0 if it adhered
-      if (spin != 0.0)
-        u = rotation(spin * t) * u + rotationIntegral(spin, t) * drive(kin, x_mid);
-      else
-        u += t * drive(kin, x_mid);
+      u = coupling(u, drive(kin, x_mid), t);
       const Eigen::Vector2d adhering = u;
       const FrictionCap::Result r = cap.apply(u, x1, drive(kin, x1));
       if (!r.sliding)
@@ -608,18 +630,16 @@ void BrushTransient::substep(const ContactKinematics& kin, double dt)
   recentre();
 }
 
-void BrushTransient::coulombStep(const ContactKinematics& kin, const FrictionCap& cap, double spin, std::size_t p,
-                                 const Eigen::Vector2d& x_start, const Eigen::Vector2d& x1, double t, bool was_sliding)
+void BrushTransient::coulombStep(const ContactKinematics& kin, const FrictionCap& cap, const Coupling& coupling,
+                                 std::size_t p, const Eigen::Vector2d& x_start, const Eigen::Vector2d& x1, double t,
+                                 bool was_sliding)
 {
   // The bristle as if it adhered over the step (eq. 1 with v_s = 0: the drive at the midpoint, the turn coupling's
   // rotation exact), then scaled back onto the bound where it would pass it: the implicit (backward Euler) step of eq.
   // (4b), the "return mapping". A sliding bristle thereby turns towards the drive by the angle its tip moves and
   // re-adheres wherever the trial falls inside the bound; u stays continuous, so no onset jumps (jump_ stays 0).
   const auto trial = [&](const Eigen::Vector2d& u, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double dt) {
-    const Eigen::Vector2d mid = 0.5 * (a + b);
-    if (spin != 0.0)
-      return Eigen::Vector2d(rotation(spin * dt) * u + rotationIntegral(spin, dt) * drive(kin, mid));
-    return Eigen::Vector2d(u + dt * drive(kin, mid));
+    return coupling(u, drive(kin, 0.5 * (a + b)), dt);
   };
   const auto bound = [&](const Eigen::Vector2d& x) { return p_.mu * cap.qz(x.squaredNorm()) / p_.k; };
   Eigen::Vector2d& u = u_[p];

@@ -236,8 +236,10 @@ private:
   long last_steps_ = 0;          // the sliding steps of the last whole-step update, and its travel (predictWork)
   double last_travel_ = 0.0;
   void substep(const ContactKinematics& kin, double dt);
+  // the turn coupling's exact rotation over a time (with tilt), its matrices for a whole substep and half of one kept
+  struct Coupling;
   // one bristle's substep under eq. (4b): the trial deflection scaled back onto the bound, and its own error
-  void coulombStep(const ContactKinematics& kin, const FrictionCap& cap, double spin, std::size_t p,
+  void coulombStep(const ContactKinematics& kin, const FrictionCap& cap, const Coupling& coupling, std::size_t p,
                    const Eigen::Vector2d& x_start, const Eigen::Vector2d& x1, double t, bool was_sliding);
   void recentre();
   double streakBound(const Slips& s) const;
