@@ -602,28 +602,35 @@ double elasticEnergy(const BrushTransient& model)
   return e;
 }
 
-TEST(BrushTransient, WholeStepsAgreeWithSubstepsOnNoisyHistories)
+// The default stepping against the lattice's half-spacing substeps (two independent time integrations of the same
+// lattice) on seeded random points of the envelope with noisy histories of 0.03-2.5 patch radii a message, some ending
+// parked with spin, under both laws: the answers within the sum of the two estimates. With tilt the rolling chi_gamma
+// and the parked turn are drawn too.
+void expectSteppingsAgreeOnNoisyHistories(bool tilt, int histories, int resolution, unsigned seed)
 {
-  // Each bristle over the whole message along its path against the lattice's half-spacing substeps (two independent
-  // time integrations of the same lattice), without tilt, on seeded random points of the envelope with noisy histories
-  // of 0.03-2.5 patch radii a message, some ending parked with spin: within the sum of the two estimates.
   for (auto law : kSlidingLaws)
   {
-    std::mt19937_64 rng(29);
+    std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     int checked = 0, short_count = 0;
     double worst = 0.0;
-    for (int h = 0; h < 40; ++h)
+    for (int h = 0; h < histories; ++h)
     {
       BrushParameters p = test::drawEnvelopeParameters(rng, h, law);
-      p.tilt = false;
-      p.resolution = 24;
+      p.tilt = tilt;
+      p.resolution = resolution;
       const double scale = std::pow(10.0, -2.0 * u(rng));
       const Eigen::Vector2d base = scale * Eigen::Vector2d(0.3 * (2.0 * u(rng) - 1.0), 0.1 * (2.0 * u(rng) - 1.0));
       const double a_phi = scale * (2.0 * u(rng) - 1.0), noise = std::pow(10.0, -3.0 + 2.0 * u(rng));
       const double dt = std::pow(10.0, -1.5 + 1.9 * u(rng)) * p.a;  // at V_r = 1 m/s
+      double chi = 1.0, chi_parked = 0.0;
+      if (tilt)
+      {
+        chi = 0.2 + u(rng);
+        chi_parked = 2.0 * u(rng);
+      }
       const bool parked = u(rng) < 0.3;
-      const test::NoisyHistory history{ base, a_phi, noise, 1.0, 0.0 };
+      const test::NoisyHistory history{ base, a_phi, noise, chi, chi_parked };
       BrushTransient whole(p), substeps(p);
       substeps.setStepping(TransientStepping::Substeps);
       for (int m = 0; m < 24; ++m)
@@ -638,9 +645,86 @@ TEST(BrushTransient, WholeStepsAgreeWithSubstepsOnNoisyHistories)
         worst = std::max(worst, ratio);
       }
     }
-    std::printf("%s law: whole steps against substeps, difference / estimates at most %.2f, beyond at %d of %d\n",
-                toString(law), worst, short_count, checked);
+    std::printf("%s law%s: whole steps against substeps, difference / estimates at most %.2f, beyond at %d of %d\n",
+                toString(law), tilt ? ", tilt" : "", worst, short_count, checked);
     EXPECT_EQ(short_count, 0) << toString(law) << " worst " << worst;
+  }
+}
+
+TEST(BrushTransient, WholeStepsAgreeWithSubstepsOnNoisyHistories)
+{
+  // Each bristle over the whole message along its path, without tilt
+  expectSteppingsAgreeOnNoisyHistories(false, 40, 24, 29);
+}
+
+TEST(BrushTransient, ArcsAgreeWithSubstepsOnNoisyTiltedHistories)
+{
+  // With tilt, the bristles stepped one by one with the adhering ones' closed forms along their arcs (advanceArcs)
+  expectSteppingsAgreeOnNoisyHistories(true, 16, 16, 31);
+}
+
+TEST(BrushTransient, TiltedAdheringBristlesFollowTheirArcsInClosedForm)
+{
+  // With tilt the roots move along arcs and the coupling turns the deflections: an adhering bristle that cannot reach its
+  // bound within an update is advanced in closed form along its arc (advanceArcs). Against the substeps of the same
+  // lattice, 16 and 64 of them over the update (each update one substep), for the bristles well inside throughout: the
+  // substeps' difference from the closed form falls as their length squared (second order), towards it.
+  for (double chi : { 0.3, 0.6, 1.0 })
+  {
+    BrushParameters p;
+    p.a = 0.01, p.F_z = 49.0, p.k = 2e8, p.mu = 50.0;  // high friction: every bristle adheres
+    p.tilt = true;
+    p.resolution = 16;
+    const ContactKinematics kin = ContactKinematics::fromSlips({ 0.003, -0.002 }, 20.0, chi, 1.0);
+    const double dt = 0.002, rate = kin.omegaGamma();
+    BrushTransient whole(p), sub16(p), sub64(p);
+    for (BrushTransient* m : { &whole, &sub16, &sub64 })
+    {
+      m->setStepping(TransientStepping::Substeps);
+      m->update(kin, 0.004);  // the same state before
+    }
+    whole.setStepping(TransientStepping::WholeStep);
+    std::vector<Eigen::Vector2d> start;
+    whole.forEachBristle([&](const Eigen::Vector2d& x, const Eigen::Vector2d&, bool) { start.push_back(x); });
+    whole.update(kin, dt);
+    for (int n = 0; n < 16; ++n)
+      sub16.update(kin, dt / 16);
+    for (int n = 0; n < 64; ++n)
+      sub64.update(kin, dt / 64);
+    // each starting bristle's end: x1 = R(omega_gamma dt) x0 - S(omega_gamma, dt) V_r
+    const double c = std::cos(rate * dt), s = std::sin(rate * dt);
+    const Eigen::Matrix2d R = (Eigen::Matrix2d() << c, -s, s, c).finished();
+    const Eigen::Matrix2d S = (Eigen::Matrix2d() << s, -(1.0 - c), 1.0 - c, s).finished() / rate;
+    const auto deflectionAt = [](const BrushTransient& m, const Eigen::Vector2d& x, bool& found) {
+      Eigen::Vector2d u = Eigen::Vector2d::Zero();
+      found = false;
+      m.forEachBristle([&](const Eigen::Vector2d& y, const Eigen::Vector2d& v, bool) {
+        if ((y - x).norm() < 1e-9)
+          u = v, found = true;
+      });
+      return u;
+    };
+    double d16 = 0.0, d64 = 0.0, change = 0.0;
+    int compared = 0;
+    for (const Eigen::Vector2d& x0 : start)
+    {
+      const Eigen::Vector2d x1 = R * x0 - S * kin.V_r;
+      if (std::max(x0.norm(), x1.norm()) > 0.9 * p.a)
+        continue;  // (by the rim the arc may leave the patch: its substeps)
+      bool a = false, b = false, e = false;
+      const Eigen::Vector2d u = deflectionAt(whole, x1, a), u16 = deflectionAt(sub16, x1, b), u64 = deflectionAt(sub64, x1, e);
+      ASSERT_TRUE(a && b && e);
+      ++compared;
+      d16 = std::max(d16, (u16 - u).norm());
+      d64 = std::max(d64, (u64 - u).norm());
+      change = std::max(change, (u64 - u16).norm());
+    }
+    std::printf("chi_gamma %.1f: %d bristles, the closed form against 16 substeps %.3g m, against 64 %.3g m\n", chi,
+                compared, d16, d64);
+    EXPECT_GT(compared, 100);
+    EXPECT_GT(d16, 0.0);
+    EXPECT_LT(d64, d16 / 10.0) << "chi_gamma " << chi;  // 16 for second order
+    EXPECT_LT(d16, 1e-6);  // of deflections about 1e-3 m
   }
 }
 
@@ -874,13 +958,17 @@ TEST(BrushTransient, ThePatchNeverGivesEnergyBack)
         const double e_limited = elasticEnergy(model), e_adhering = elasticEnergy(adhering);
         ++steps;
         const double gain = (e_limited - e_adhering) / std::max(e_adhering, 1e-300);
-        gains += gain > 1e-12;
+        // (with tilt an adhering bristle out of reach of its bound takes the rest of the update in closed form, one
+        // near it the substeps, which the bound then may not cap: the two models differ there by the substeps' own
+        // error, not by friction)
+        const double slack = tilt ? 1e-9 : 1e-12;
+        gains += gain > slack;
         worst_gain = std::max(worst_gain, gain);
-        EXPECT_LE(e_limited, e_adhering * (1.0 + 1e-12)) << toString(law) << " tilt " << tilt << " step " << i;
+        EXPECT_LE(e_limited, e_adhering * (1.0 + slack)) << toString(law) << " tilt " << tilt << " step " << i;
       }
     }
-    std::printf("%s law: the limited step stored more energy than the adhering one at %d of %d steps (by up to %.1f %%)\n",
-                toString(law), gains, steps, 100.0 * worst_gain);
+    std::printf("%s law: the limited step stored more energy than the adhering one at %d of %d steps (by up to %.2g)\n",
+                toString(law), gains, steps, worst_gain);
   }
 }
 

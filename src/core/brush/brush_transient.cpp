@@ -311,8 +311,12 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
       short_of_work = true;
       f.flags |= brush_flags::kSubstepsTruncated;
     }
-    for (int s = 0; s < count; ++s)
-      substep(kin, dt / count);
+    if (p_.tilt && stepping_ == TransientStepping::WholeStep)
+      advanceArcs(kin, dt, count);
+    else
+      for (int s = 0; s < count; ++s)
+        substep(kin, dt / count);
+    // (counted as every point at every substep: what the adhering bristles' closed forms spare is not counted)
     work_ += static_cast<long>(count) * w_ * w_ * kPointWork;
   }
   if (short_of_work)
@@ -547,87 +551,193 @@ void BrushTransient::substep(const ContactKinematics& kin, double dt)
   R_ = Q * R_;
   o_ = Q * o_ - rotationIntegral(rate, dt) * kin.V_r;
   suspect_centre_ = Q * suspect_centre_ - rotationIntegral(rate, dt) * kin.V_r;
-
-  // Bristle ODE du/dt = w(x) - [A_psi_dot u]: exact rotation at rate -psi_dot of the coupling, drive at
-  // the midpoint of the time spent inside the patch.
-  const double spin = p_.tilt ? -kin.psi_dot : 0.0;
-  const Coupling coupling(spin, dt);
-  const double a2 = p_.a * p_.a;
+  const Coupling coupling(p_.tilt ? -kin.psi_dot : 0.0, dt);
   const FrictionCap cap(p_);
-  const bool coulomb = p_.sliding_law == SlidingLaw::Coulomb;
   for (int j = 0; j < w_; ++j)
+    for (int i = 0; i < w_; ++i)
+    {
+      const Eigen::Vector2d l((i - c0_) * h_, (j - c0_) * h_);
+      substepBristle(kin, cap, coupling, index(i, j), o_old + R_old * l, o_ + R_ * l, dt);
+    }
+  recentre();
+}
+
+void BrushTransient::substepBristle(const ContactKinematics& kin, const FrictionCap& cap, const Coupling& coupling,
+                                    std::size_t p, const Eigen::Vector2d& x0, const Eigen::Vector2d& x1, double dt)
+{
+  // Bristle ODE du/dt = w(x) - [A_psi_dot u]: exact rotation at rate -psi_dot of the coupling, drive at the midpoint
+  // of the time spent inside the patch.
+  const double a2 = p_.a * p_.a;
+  const double g1 = x1.squaredNorm() - a2;
+  if (g1 >= 0.0)
   {
+    u_[p].setZero();  // outside the patch: undeformed (it re-enters under eq. 8)
+    step_error_[p] = 0.0;
+    inside_[p] = sliding_[p] = 0;
+    return;
+  }
+  double share = 1.0;  // part of the substep spent inside
+  const bool was_sliding = inside_[p] && sliding_[p];
+  if (!inside_[p])
+  {
+    const double g0 = x0.squaredNorm() - a2;
+    share = g0 > 0.0 ? -g1 / (g0 - g1) : 1.0;
+    u_[p].setZero();
+    step_error_[p] = 0.0;
+  }
+  double t = share * dt;
+  Eigen::Vector2d x_start = x1 + share * (x0 - x1);
+  Eigen::Vector2d& u = u_[p];
+  const double travel = (x1 - x_start).norm();
+  if (p_.sliding_law == SlidingLaw::Coulomb)
+  {
+    coulombStep(kin, cap, coupling, p, x_start, x1, t, was_sliding);
+    return;
+  }
+  if (was_sliding)
+  {
+    // A sliding bristle re-adheres only where it enters G (reAdhesionEntry). Testing the adhering step against
+    // the bound instead re-adhered too early where the sliding direction turns within a substep (beside a spin
+    // pole, where G lies): 5 % of the bound off on whole streaks at the example point of issue 11.
+    const double s_in = reAdhesionEntry(kin, cap, x_start, x1);
+    if (s_in < 0.0)
+    {
+      cap.slide(u, x1, drive(kin, x1));
+      slip_travel_[p] += travel;
+      return;  // inside and sliding, as it was
+    }
+    x_start += s_in * (x1 - x_start);
+    cap.slide(u, x_start, drive(kin, x_start));  // the capped deflection it re-adheres from
+    t *= 1.0 - s_in;
+  }
+  const Eigen::Vector2d x_mid = 0.5 * (x_start + x1);
+  const double over_start = u.norm() - p_.mu * cap.qz(x_start.squaredNorm()) / p_.k;  // <= 0 if it adhered
+  u = coupling(u, drive(kin, x_mid), t);
+  const Eigen::Vector2d adhering = u;
+  const FrictionCap::Result r = cap.apply(u, x1, drive(kin, x1));
+  if (!r.sliding)
+    slip_travel_[p] = INFINITY;
+  else
+  {
+    // onset in this substep (or after re-adhering in it): where |u| - bound crossed zero, linearly between its
+    // start and end values
+    const double over_end = adhering.norm() - p_.mu * r.q_z / p_.k;
+    const double before = over_start < 0.0 && over_end > over_start ? -over_start / (over_end - over_start) : 0.0;
+    slip_travel_[p] = (1.0 - before) * (x1 - x_start).norm();
+    // at the onset |u| is the bound: the jump turns it from the adhering direction onto the sliding field
+    const double n_adh = adhering.norm(), bound = p_.mu * r.q_z / p_.k;
+    jump_[p] = n_adh > 0.0 ? Eigen::Vector2d(bound * adhering / n_adh - u) : Eigen::Vector2d::Zero();
+  }
+  inside_[p] = 1;
+  sliding_[p] = r.sliding;
+}
+
+void BrushTransient::advanceArcs(const ContactKinematics& kin, double dt, int count)
+{
+  // The same substeps as substep() (the roots' rigid motion of eq. 31 over each), taken bristle by bristle: the lattice's
+  // pose moves over the whole update and the window is recentred on the patch's new place first, then each bristle
+  // steps along its arc, x_k = Q x_(k-1) - c. An adhering bristle whose arc from a substep's end on cannot reach its
+  // bound (arcStaysInside) is advanced over the rest of the update in closed form (arcMap): most bristles of a rolling
+  // patch, which took every substep before.
+  const double step = dt / count, rate = kin.omegaGamma();
+  V_r_ = kin.V_r;
+  omega_gamma_ = rate;
+  const Eigen::Matrix2d Q = rotation(rate * step), R0 = R_;
+  const Eigen::Vector2d c = rotationIntegral(rate, step) * kin.V_r, o0 = o_;
+  for (int s = 0; s < count; ++s)
+  {
+    R_ = Q * R_;
+    o_ = Q * o_ - c;
+    suspect_centre_ = Q * suspect_centre_ - c;
+  }
+  const Eigen::Vector2i shift = recentre();  // bristle (i, j) now was (i, j) + shift at the start
+  // the closed forms along arcs of at most a quarter turn (arcStaysInside's sagitta), each remaining span's map once
+  const bool arcs = count <= kArcMaps && std::abs(rate) * dt <= 0.5 * boost::math::double_constants::pi;
+  if (arcs)
+    for (int k = 0; k <= count; ++k)
+      arc_maps_[k].ready = false;
+  const Coupling coupling(-kin.psi_dot, step);
+  const FrictionCap cap(p_);
+  const double a2 = p_.a * p_.a;
+  const auto adheres = [&](std::size_t p, const Eigen::Vector2d& x, const Eigen::Vector2d& x_end, int k) {
+    if (!arcs || !inside_[p] || sliding_[p] || !arcStaysInside(kin, cap, u_[p], x, x_end, (count - k) * step))
+      return false;
+    const ArcMap& m = arcMap(kin, k, count, step);
+    u_[p] = m.A * u_[p] - m.C * x + m.d;
+    return true;
+  };
+  for (int j = 0; j < w_; ++j)
     for (int i = 0; i < w_; ++i)
     {
       const std::size_t p = index(i, j);
       const Eigen::Vector2d l((i - c0_) * h_, (j - c0_) * h_);
-      const Eigen::Vector2d x1 = o_ + R_ * l;
-      const double g1 = x1.squaredNorm() - a2;
-      if (g1 >= 0.0)
+      const Eigen::Vector2d x_end = o_ + R_ * l;
+      if (x_end.squaredNorm() >= a2)
       {
         u_[p].setZero();  // outside the patch: undeformed (it re-enters under eq. 8)
         step_error_[p] = 0.0;
         inside_[p] = sliding_[p] = 0;
         continue;
       }
-      const Eigen::Vector2d x0 = o_old + R_old * l;
-      double share = 1.0;  // part of the substep spent inside
-      const bool was_sliding = inside_[p] && sliding_[p];
-      if (!inside_[p])
+      Eigen::Vector2d x = o0 + R0 * (l + h_ * shift.cast<double>());
+      for (int k = 0; k < count && !adheres(p, x, x_end, k); ++k)
       {
-        const double g0 = x0.squaredNorm() - a2;
-        share = g0 > 0.0 ? -g1 / (g0 - g1) : 1.0;
-        u_[p].setZero();
-        step_error_[p] = 0.0;
+        const Eigen::Vector2d next = k + 1 == count ? x_end : Eigen::Vector2d(Q * x - c);
+        substepBristle(kin, cap, coupling, p, x, next, step);
+        x = next;
       }
-      double t = share * dt;
-      Eigen::Vector2d x_start = x1 + share * (x0 - x1);
-      Eigen::Vector2d& u = u_[p];
-      const double travel = (x1 - x_start).norm();
-      if (coulomb)
-      {
-        coulombStep(kin, cap, coupling, p, x_start, x1, t, was_sliding);
-        continue;
-      }
-      if (was_sliding)
-      {
-        // A sliding bristle re-adheres only where it enters G (reAdhesionEntry). Testing the adhering step against
-        // the bound instead re-adhered too early where the sliding direction turns within a substep (beside a spin
-        // pole, where G lies): 5 % of the bound off on whole streaks at the example point of issue 11.
-        const double s_in = reAdhesionEntry(kin, cap, x_start, x1);
-        if (s_in < 0.0)
-        {
-          cap.slide(u, x1, drive(kin, x1));
-          slip_travel_[p] += travel;
-          continue;  // inside and sliding, as it was
-        }
-        x_start += s_in * (x1 - x_start);
-        cap.slide(u, x_start, drive(kin, x_start));  // the capped deflection it re-adheres from
-        t *= 1.0 - s_in;
-      }
-      const Eigen::Vector2d x_mid = 0.5 * (x_start + x1);
-      const double over_start = u.norm() - p_.mu * cap.qz(x_start.squaredNorm()) / p_.k;  // <= 0 if it adhered
-      u = coupling(u, drive(kin, x_mid), t);
-      const Eigen::Vector2d adhering = u;
-      const FrictionCap::Result r = cap.apply(u, x1, drive(kin, x1));
-      if (!r.sliding)
-        slip_travel_[p] = INFINITY;
-      else
-      {
-        // onset in this substep (or after re-adhering in it): where |u| - bound crossed zero, linearly between its
-        // start and end values
-        const double over_end = adhering.norm() - p_.mu * r.q_z / p_.k;
-        const double before = over_start < 0.0 && over_end > over_start ? -over_start / (over_end - over_start) : 0.0;
-        slip_travel_[p] = (1.0 - before) * (x1 - x_start).norm();
-        // at the onset |u| is the bound: the jump turns it from the adhering direction onto the sliding field
-        const double n_adh = adhering.norm(), bound = p_.mu * r.q_z / p_.k;
-        jump_[p] = n_adh > 0.0 ? Eigen::Vector2d(bound * adhering / n_adh - u) : Eigen::Vector2d::Zero();
-      }
-      inside_[p] = 1;
-      sliding_[p] = r.sliding;
     }
-  }
-  recentre();
+}
+
+bool BrushTransient::arcStaysInside(const ContactKinematics& kin, const FrictionCap& cap, const Eigen::Vector2d& u,
+                                    const Eigen::Vector2d& x, const Eigen::Vector2d& x_end, double tau) const
+{
+  // The arc from x to x_end (an angle theta = |omega_gamma| tau <= pi / 2) lies within its sagitta, (L / 2) tan(theta /
+  // 4) for a chord L, of the chord, on which |x| is largest at an end: r_max bounds |x| along it, and the bound
+  // mu q_z / k is least there (q_z falls with r). In the coupling's frame (arcMap) |u| grows by at most the drive's
+  // norm, |V_s| + |omega_z| r_max, over the time. Where that reach stays below the least bound, no onset.
+  const double L = (x_end - x).norm(), theta = std::abs(kin.omegaGamma()) * tau;
+  const double r_max = std::max(x.norm(), x_end.norm()) + 0.5 * L * std::tan(0.25 * theta);
+  if (!(r_max < p_.a))
+    return false;
+  const double bound = p_.mu * cap.qz(r_max * r_max) / p_.k;
+  const double reach = u.norm() + tau * (kin.V_s.norm() + std::abs(kin.omega_z) * r_max);
+  return reach < (1.0 - 1e-9) * bound;
+}
+
+const BrushTransient::ArcMap& BrushTransient::arcMap(const ContactKinematics& kin, int k, int count, double step)
+{
+  // An adhering bristle along its arc over tau (the docs' closed form, checked against these substeps: their difference
+  // falls as their length cubed). In the frame turning with the coupling, v = R(psi_dot t) u, eq. 31's
+  // du/dt = w - A_psi_dot u is dv/dt = R(psi_dot t) w(x(t)), with x(t) = R(omega_gamma t) x0 - S(omega_gamma, t) V_r,
+  // w = -V_s - omega_z J x and S(alpha, t) the integral of R(alpha s) over [0, t]; integrated,
+  //   u(tau) = R(-psi_dot tau) (u0 - S(psi_dot, tau) V_s - omega_z J S(psi_dot + omega_gamma, tau) x0
+  //                              + omega_z J W V_r),   W = Int_0^tau R(psi_dot s) S(omega_gamma, s) ds,
+  // affine in u0 and x0 with the same matrices for every bristle: u = A u0 - C x0 + d.
+  ArcMap& m = arc_maps_[k];
+  if (m.ready)
+    return m;
+  const double tau = (count - k) * step, psi_dot = kin.psi_dot, rate = kin.omegaGamma();
+  const Eigen::Matrix2d J = (Eigen::Matrix2d() << 0.0, -1.0, 1.0, 0.0).finished();
+  // W by Gauss-Legendre's five-point rule on panels that turn by at most half a radian (exact to rounding there)
+  static constexpr double kNodes[5] = { 0.046910077030668, 0.230765344947158, 0.5, 0.769234655052842,
+                                        0.953089922969332 };
+  static constexpr double kWeights[5] = { 0.118463442528095, 0.239314335249683, 0.284444444444444,
+                                          0.239314335249683, 0.118463442528095 };
+  const int panels = std::max(1, static_cast<int>(std::ceil(std::max(std::abs(psi_dot), std::abs(rate)) * tau / 0.5)));
+  const double width = tau / panels;
+  Eigen::Matrix2d W = Eigen::Matrix2d::Zero();
+  for (int q = 0; q < panels; ++q)
+    for (int n = 0; n < 5; ++n)
+    {
+      const double s = (q + kNodes[n]) * width;
+      W += kWeights[n] * width * rotation(psi_dot * s) * rotationIntegral(rate, s);
+    }
+  m.A = rotation(-psi_dot * tau);
+  m.C = kin.omega_z * m.A * J * rotationIntegral(psi_dot + rate, tau);
+  m.d = m.A * (-(rotationIntegral(psi_dot, tau) * kin.V_s) + kin.omega_z * J * W * kin.V_r);
+  m.ready = true;
+  return m;
 }
 
 void BrushTransient::coulombStep(const ContactKinematics& kin, const FrictionCap& cap, const Coupling& coupling,
@@ -710,13 +820,13 @@ double BrushTransient::streakBound(const Slips& s) const
   return bound;
 }
 
-void BrushTransient::recentre()
+Eigen::Vector2i BrushTransient::recentre()
 {
   // The patch centre in lattice coordinates, in spacings from the window centre.
   const Eigen::Vector2d l = -R_.transpose() * o_ / h_;
   const int di = static_cast<int>(std::lround(l.x())), dj = static_cast<int>(std::lround(l.y()));
   if (di == 0 && dj == 0)
-    return;
+    return { 0, 0 };
   // New index (i, j) holds old (i + di, j + dj); points shifted in from outside the window lie outside
   // the patch (the margin), so they start undeformed. Row by row: the kept stretch of a row is contiguous in both.
   const int i0 = std::clamp(-di, 0, w_), i1 = std::clamp(w_ - di, i0, w_);  // the kept columns [i0, i1)
@@ -749,6 +859,7 @@ void BrushTransient::recentre()
   slip_travel_.swap(slip_travel_scratch_);
   step_error_.swap(step_error_scratch_);
   o_ += R_ * Eigen::Vector2d(di * h_, dj * h_);
+  return { di, dj };
 }
 
 Eigen::Vector2d BrushTransient::headingAt(const Eigen::Vector2d& x) const

@@ -20,9 +20,9 @@ namespace sphere_contact_estimator
 class FrictionCap;
 class TransientRows;  // the rows' control variate (private: src/core/brush/transient_rows.h)
 
-/// How BrushTransient advances its bristles without tilt: each over the whole update along its path (the default), or
-/// all of them by half a lattice spacing per substep (the lattice's first scheme, which tilt still uses; kept to compare
-/// against in one run).
+/// How BrushTransient advances its bristles: each over the whole update along its path (the default; with tilt, each
+/// by the substeps below until it adheres out of reach of its bound, then in closed form along its arc), or all of
+/// them by half a lattice spacing per substep (the lattice's first scheme; kept to compare against in one run).
 enum class TransientStepping
 {
   WholeStep,
@@ -47,7 +47,9 @@ enum class TransientStepping
 /// the patch rolls. With tilt (arcs about the tilting centre, the turn coupling) the update is taken in substeps that
 /// keep each bristle's path within half a lattice spacing and every rotation below 0.1 rad, at most kMaxSubsteps
 /// (flagged when that is short), each bristle with the exact rotation of the turn coupling and the midpoint value of
-/// the drive, capped after every substep (FrictionCap). Forces are the lattice sum of k u over the bristles inside the
+/// the drive, capped after every substep (FrictionCap); bristle by bristle, and an adhering one that cannot reach its
+/// bound over the rest of the update (|u| + the drive's largest norm times the time, against the least bound within
+/// the arc's sagitta) takes the rest in closed form along its arc (advanceArcs). Forces are the lattice sum of k u over the bristles inside the
 /// patch, with the cell weight normalised so that the lattice sum of q_z is F_z (then |F_t| <= mu F_z
 /// exactly). At the onset of sliding the deflection jumps onto the sliding field, and at the patch edge the
 /// field ends: a plain lattice sum across such a jump is first order, so each bristle records how far it has
@@ -238,10 +240,28 @@ private:
   void substep(const ContactKinematics& kin, double dt);
   // the turn coupling's exact rotation over a time (with tilt), its matrices for a whole substep and half of one kept
   struct Coupling;
+  // one bristle's substep from x0 to x1 (either law; outside the patch at x1: undeformed)
+  void substepBristle(const ContactKinematics& kin, const FrictionCap& cap, const Coupling& coupling, std::size_t p,
+                      const Eigen::Vector2d& x0, const Eigen::Vector2d& x1, double dt);
   // one bristle's substep under eq. (4b): the trial deflection scaled back onto the bound, and its own error
   void coulombStep(const ContactKinematics& kin, const FrictionCap& cap, const Coupling& coupling, std::size_t p,
                    const Eigen::Vector2d& x_start, const Eigen::Vector2d& x1, double t, bool was_sliding);
-  void recentre();
+  Eigen::Vector2i recentre();  // returns the shift (di, dj): point (i, j) now holds what (i + di, j + dj) held
+  // with tilt: the substeps bristle by bristle, an adhering one in closed form along its arc once it cannot reach its
+  // bound within the update (arcStaysInside, arcMap)
+  void advanceArcs(const ContactKinematics& kin, double dt, int count);
+  bool arcStaysInside(const ContactKinematics& kin, const FrictionCap& cap, const Eigen::Vector2d& u,
+                      const Eigen::Vector2d& x, const Eigen::Vector2d& x_end, double tau) const;
+  // u(tau) = A u0 - C x0 + d for an adhering bristle from x0 over the update's last count - k substeps, kept per k
+  struct ArcMap
+  {
+    Eigen::Matrix2d A, C;
+    Eigen::Vector2d d;
+    bool ready = false;
+  };
+  static constexpr int kArcMaps = 256;  // updates of more substeps take all of them
+  std::vector<ArcMap> arc_maps_ = std::vector<ArcMap>(kArcMaps + 1);  // sized once: the hot path does not allocate
+  const ArcMap& arcMap(const ContactKinematics& kin, int k, int count, double step);
   double streakBound(const Slips& s) const;
   // the sums' cells: along a bristle's motion, how far the patch edge lies ahead and behind and which neighbour is
   // upstream; and its deflection over its cell on the lattice k (0) or sub-lattice k (1-4), with the cell's weight
