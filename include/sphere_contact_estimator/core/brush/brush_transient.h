@@ -249,7 +249,12 @@ private:
   Eigen::Vector2i recentre();  // returns the shift (di, dj): point (i, j) now holds what (i + di, j + dj) held
   // with tilt: the substeps bristle by bristle, an adhering one in closed form along its arc once it cannot reach its
   // bound within the update (arcStaysInside, arcMap)
-  void advanceArcs(const ContactKinematics& kin, double dt, int count);
+  // (false where the budget cut a bristle's substeps short)
+  bool advanceArcs(const ContactKinematics& kin, double dt, int count);
+  // the substeps' share of points times substeps the last update took (advanceArcs: the rest in closed form)
+  double arc_visit_share_ = 1.0;
+  // what an update by n substeps stepped bristle by bristle is predicted to count over a window w points wide
+  long arcsWork(int n, long w) const;
   bool arcStaysInside(const ContactKinematics& kin, const FrictionCap& cap, const Eigen::Vector2d& u,
                       const Eigen::Vector2d& x, const Eigen::Vector2d& x_end, double tau) const;
   // u(tau) = A u0 - C x0 + d for an adhering bristle from x0 over the update's last count - k substeps, kept per k
