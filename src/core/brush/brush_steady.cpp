@@ -25,6 +25,8 @@ BrushSteady::BrushSteady(const BrushParameters& parameters) : BrushSlipModel(par
 {
 }
 
+void BrushSteady::prepareRules() { preparePatchRules(); }
+
 BrushForces BrushSteady::evaluate(const Eigen::Vector2d& sigma, double phi, double phi_gamma, double phi_psi) const
 {
   return solve(sigma, phi, phi_gamma, phi_psi, p_.accuracy_target, nullptr, nullptr, std::min(kMaxWork, work_budget_));

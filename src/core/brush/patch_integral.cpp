@@ -701,6 +701,14 @@ int reAdhesionBands(const BristleField& field, double* lo, double* hi, int max_c
   return n;
 }
 
+void preparePatchRules()
+{
+  numerics::prepareQuadratureRules();
+  kronrod15();
+  kronrod7();
+  jacobiRule(numerics::JacobiKronrod::kMinPoints);
+}
+
 PatchIntegral integratePatch(const BristleField& field, double tolerance, long max_work, CoulombStepper stepper)
 {
   Integrator integrator(field, tolerance, max_work, stepper);

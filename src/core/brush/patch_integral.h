@@ -42,6 +42,10 @@ struct PatchIntegral
 PatchIntegral integratePatch(const BristleField& field, double tolerance, long max_work,
                             CoulombStepper stepper = CoulombStepper::Collocation);
 
+/// Builds the quadrature rules integratePatch draws on that are built on first use (numerics::prepareQuadratureRules
+/// and the rules across the paths): once per process, about half a millisecond (BrushSteady::prepareRules).
+void preparePatchRules();
+
 /// Theta of the path through the spin pole, if the pole lies inside the patch.
 bool polePath(const BristleField& field, double& theta);
 

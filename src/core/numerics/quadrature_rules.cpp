@@ -215,4 +215,12 @@ const JacobiKronrod& jacobiKronrod(int n)
   return rules[n - JacobiKronrod::kMinPoints];
 }
 
+void prepareQuadratureRules()
+{
+  gaussLegendre(1);
+  kronrodComplement();
+  kronrod7Complement();
+  jacobiKronrod(JacobiKronrod::kMinPoints);
+}
+
 }  // namespace sphere_contact_estimator::numerics

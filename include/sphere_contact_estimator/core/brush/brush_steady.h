@@ -38,6 +38,9 @@ class BrushSteady : public BrushSlipModel
 public:
   explicit BrushSteady(const BrushParameters& parameters);
   BrushModelKind kind() const override { return BrushModelKind::Steady; }
+  /// Builds the quadrature rules the solver builds on first use (about half a millisecond, once per process), so that
+  /// no evaluation pays for them: ContactEstimator calls it at construction, before the first message.
+  static void prepareRules();
   /// The field of the last update's slips on kVisitPaths x kVisitPoints points.
   void visitBristles(const BristleVisitor& visit) const override;
   /// The same for given slips (as update() takes them).

@@ -61,4 +61,8 @@ struct JacobiKronrod
 /// weight's moments in 60-digit arithmetic; test QuadratureRules.JacobiKronrodIsExactForItsWeight).
 const JacobiKronrod& jacobiKronrod(int n);
 
+/// Builds every rule above that is built on first use (the Gauss-Legendre rules by Newton's iterations, about 0.4 ms,
+/// and the complements): once per process, so that no message pays for it (ContactEstimator does at construction).
+void prepareQuadratureRules();
+
 }  // namespace sphere_contact_estimator::numerics
