@@ -268,7 +268,6 @@ void BrushTransient::reset()
   std::fill(jump_.begin(), jump_.end(), Eigen::Vector2d::Zero());
   V_r_.setZero();
   omega_gamma_ = 0.0;
-  arc_visit_share_ = 1.0;
   have_last_kin_ = false;
   held_travel_ = 0.0;
   fill_travel_ = 0.0;
@@ -302,28 +301,23 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
       f.flags |= brush_flags::kSubstepsTruncated;
     }
     int count = n < 0 ? kMaxSubsteps : n;
-    if (p_.tilt && stepping_ == TransientStepping::WholeStep)
+    // fewer substeps than accuracy wants where the work budget cannot pay for them (a fixed lattice, or auto's at its
+    // coarsest): the answer then makes no claim beyond the friction circle's, nor do the next ones (suspect_)
+    const long point_work = static_cast<long>(w_) * w_ * kPointWork;
+    const long affordable = (work_budget_ - sumsWork()) / point_work;  // and the sums
+    if (count > affordable)
     {
-      // bristle by bristle, within the budget: one that does not fit takes the rest in one substep, its error counted
-      if (!advanceArcs(kin, dt, count))
-        f.flags |= brush_flags::kSubstepsTruncated;
+      count = static_cast<int>(std::max(1L, affordable));
+      short_of_work = true;
+      f.flags |= brush_flags::kSubstepsTruncated;
     }
+    if (p_.tilt && stepping_ == TransientStepping::WholeStep)
+      advanceArcs(kin, dt, count);
     else
-    {
-      // fewer substeps than accuracy wants where the work budget cannot pay for them (a fixed lattice, or auto's at its
-      // coarsest): the answer then makes no claim beyond the friction circle's, nor do the next ones (suspect_)
-      const long point_work = static_cast<long>(w_) * w_ * kPointWork;
-      const long affordable = (work_budget_ - sumsWork()) / point_work;  // and the sums
-      if (count > affordable)
-      {
-        count = static_cast<int>(std::max(1L, affordable));
-        short_of_work = true;
-        f.flags |= brush_flags::kSubstepsTruncated;
-      }
       for (int s = 0; s < count; ++s)
         substep(kin, dt / count);
-      work_ += static_cast<long>(count) * w_ * w_ * kPointWork;
-    }
+    // (counted as every point at every substep: what the adhering bristles' closed forms spare is not counted)
+    work_ += static_cast<long>(count) * w_ * w_ * kPointWork;
   }
   if (short_of_work)
   {
@@ -417,21 +411,7 @@ long BrushTransient::predictWork(const ContactKinematics& kin, double dt) const
     return static_cast<long>(w_) * w_ * kBristleWork + sumsWork() +
            static_cast<long>(predictSteps(kin, dt)) * kStepWork;
   }
-  if (stepping_ == TransientStepping::WholeStep)
-    return arcsWork(dt > 0.0 ? substeps(kin, dt) : 0, w_);
   return substepsWork(dt > 0.0 ? substeps(kin, dt) : 0, w_);
-}
-
-long BrushTransient::arcsWork(int n, long w) const
-{
-  // every point's closed form (or its being outside), the sums, and the substeps at the last update's share of points
-  // times substeps, with room for that share to grow by half (a bristle that does not fit is cut short, its error
-  // counted), and never more than the lattice's loop would count: a point that closes after v substeps counts
-  // v kPointWork + kBristleWork with v < n, at most n kPointWork
-  const double share = std::min(1.0, 1.5 * arc_visit_share_ + 0.05);
-  const double visits = share * (n < 0 ? kMaxSubsteps : n) * static_cast<double>(w * w);
-  return std::min(w * w * (kBristleWork + kSumWork) + static_cast<long>(std::ceil(visits)) * kPointWork,
-                  substepsWork(n, w));
 }
 
 long BrushTransient::predictFinerWork(const ContactKinematics& kin, double dt) const
@@ -443,11 +423,8 @@ long BrushTransient::predictFinerWork(const ContactKinematics& kin, double dt) c
   }
   // substeps (tilt): the finer lattice's own count (about twice this one's: half the spacing) over its window, as
   // predictWork counts them (8 times this one's prediction was 1.7 times a 16's step at 8, 66 k units against 39 k: a
-  // lattice the budget had cut to 8 never came back); stepped bristle by bristle, the share of them this one's took
-  const int n = dt > 0.0 ? substepsAt(kin, dt, 0.5 * h_) : 0;
-  if (stepping_ == TransientStepping::WholeStep)
-    return arcsWork(n, windowWidth(2 * p_.resolution));
-  return substepsWork(n, windowWidth(2 * p_.resolution));
+  // lattice the budget had cut to 8 never came back)
+  return substepsWork(dt > 0.0 ? substepsAt(kin, dt, 0.5 * h_) : 0, windowWidth(2 * p_.resolution));
 }
 
 bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
@@ -655,7 +632,7 @@ void BrushTransient::substepBristle(const ContactKinematics& kin, const Friction
   sliding_[p] = r.sliding;
 }
 
-bool BrushTransient::advanceArcs(const ContactKinematics& kin, double dt, int count)
+void BrushTransient::advanceArcs(const ContactKinematics& kin, double dt, int count)
 {
   // The same substeps as substep() (the roots' rigid motion of eq. 31 over each), taken bristle by bristle: the lattice's
   // pose moves over the whole update and the window is recentred on the patch's new place first, then each bristle
@@ -689,18 +666,9 @@ bool BrushTransient::advanceArcs(const ContactKinematics& kin, double dt, int co
     u_[p] = m.A * u_[p] - m.C * x + m.d;
     return true;
   };
-  // The work: kBristleWork for a point outside at the end or a closed form, kPointWork for each substep, so at most
-  // kPointWork a point and substep, as the lattice's loop counts. A substep is taken only with kPointWork left for every
-  // point after this one; where that is short, the bristle takes the rest of the update in one substep and carries
-  // 3 bounds as its error (it and the true deflection within the bound, and the rigid law's onset jump, at most one
-  // bound, in its cell), which the estimate sums with the steps' errors until it leaves.
-  long pool = work_budget_ - work_ - sumsWork(), work = 0, visits = 0;
-  long after = static_cast<long>(w_) * w_;  // points after this one
-  bool enough = true;
   for (int j = 0; j < w_; ++j)
     for (int i = 0; i < w_; ++i)
     {
-      --after;
       const std::size_t p = index(i, j);
       const Eigen::Vector2d l((i - c0_) * h_, (j - c0_) * h_);
       const Eigen::Vector2d x_end = o_ + R_ * l;
@@ -709,38 +677,16 @@ bool BrushTransient::advanceArcs(const ContactKinematics& kin, double dt, int co
         u_[p].setZero();  // outside the patch: undeformed (it re-enters under eq. 8)
         step_error_[p] = 0.0;
         inside_[p] = sliding_[p] = 0;
-        work += kBristleWork;
         continue;
       }
       Eigen::Vector2d x = o0 + R0 * (l + h_ * shift.cast<double>());
-      for (int k = 0; k < count; ++k)
+      for (int k = 0; k < count && !adheres(p, x, x_end, k); ++k)
       {
-        if (adheres(p, x, x_end, k))
-        {
-          work += kBristleWork;
-          break;
-        }
-        if (count - k > 1 && pool - work < (after + 1) * kPointWork)
-        {
-          const double rest = (count - k) * step;
-          substepBristle(kin, cap, Coupling(-kin.psi_dot, rest), p, x, x_end, rest);
-          if (inside_[p])
-            step_error_[p] = 3.0 * p_.mu * cap.qz(x_end.squaredNorm()) / p_.k;
-          work += kPointWork;
-          ++visits;
-          enough = false;
-          break;
-        }
         const Eigen::Vector2d next = k + 1 == count ? x_end : Eigen::Vector2d(Q * x - c);
         substepBristle(kin, cap, coupling, p, x, next, step);
-        work += kPointWork;
-        ++visits;
         x = next;
       }
     }
-  work_ += work;
-  arc_visit_share_ = static_cast<double>(visits) / (static_cast<double>(count) * w_ * w_);
-  return enough;
 }
 
 bool BrushTransient::arcStaysInside(const ContactKinematics& kin, const FrictionCap& cap, const Eigen::Vector2d& u,

@@ -171,9 +171,7 @@ public:
     return w * w * ((tilt ? kPointWork : kBristleWork) + kSumWork);
   }
   /// Work in BrushForces::work units (about 10 ns, 50 instructions on this machine kind): one lattice point in one
-  /// substep (measured: about 100 ns under eq. 4b; with tilt, counted bristle by bristle since the adhering ones' closed
-  /// forms, a unit cost 8 ns at the median and 11-12 ns at the 99th percentile of the messages along manoeuvre.bag and
-  /// its 1 kHz recording, auto and a fixed lattice of 32, the fastest of three replays)
+  /// substep (measured: about 100 ns under eq. 4b)
   static constexpr long kPointWork = 10;
   /// and without tilt, from callgrind's instruction counts along both recorded streams: a lattice point over a whole
   /// update (the loop, an adhering bristle's closed form and the window's recentring, about 100 instructions, and the
@@ -251,12 +249,7 @@ private:
   Eigen::Vector2i recentre();  // returns the shift (di, dj): point (i, j) now holds what (i + di, j + dj) held
   // with tilt: the substeps bristle by bristle, an adhering one in closed form along its arc once it cannot reach its
   // bound within the update (arcStaysInside, arcMap)
-  // (false where the budget cut a bristle's substeps short)
-  bool advanceArcs(const ContactKinematics& kin, double dt, int count);
-  // the substeps' share of points times substeps the last update took (advanceArcs: the rest in closed form)
-  double arc_visit_share_ = 1.0;
-  // what an update by n substeps stepped bristle by bristle is predicted to count over a window w points wide
-  long arcsWork(int n, long w) const;
+  void advanceArcs(const ContactKinematics& kin, double dt, int count);
   bool arcStaysInside(const ContactKinematics& kin, const FrictionCap& cap, const Eigen::Vector2d& u,
                       const Eigen::Vector2d& x, const Eigen::Vector2d& x_end, double tau) const;
   // u(tau) = A u0 - C x0 + d for an adhering bristle from x0 over the update's last count - k substeps, kept per k
