@@ -10,6 +10,7 @@
 
 // Package
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
+#include "sphere_contact_estimator/core/numerics/quadrature_rules.h"
 
 // The brush library's private rooms
 #include "bristle_path.h"
@@ -454,9 +455,7 @@ bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
       const Eigen::Vector2d x1 = first + i * along;
       if (x1.squaredNorm() >= a2)
       {
-        u_[p].setZero();  // outside the patch: undeformed (it re-enters under eq. 8)
-        step_error_[p] = 0.0;
-        inside_[p] = sliding_[p] = 0;
+        leavePatch(p);
         continue;
       }
       Eigen::Vector2d x0 = x1 + dt * kin.V_r;
@@ -511,6 +510,13 @@ double BrushTransient::timeTolerance() const
   // a fraction of the bound at the centre, mu q_z(0) / k: the deflection every bristle's error is measured against
   const double bound = p_.mu * peakFactor(p_.pressure) * p_.F_z / (boost::math::double_constants::pi * p_.a * p_.a) / p_.k;
   return kTimeTolerance * bound / (static_cast<double>(p_.resolution) * p_.resolution);
+}
+
+void BrushTransient::leavePatch(std::size_t p)
+{
+  u_[p].setZero();  // outside the patch: undeformed (it re-enters under eq. 8)
+  step_error_[p] = 0.0;
+  inside_[p] = sliding_[p] = 0;
 }
 
 struct BrushTransient::Coupling
@@ -571,9 +577,7 @@ void BrushTransient::substepBristle(const ContactKinematics& kin, const Friction
   const double g1 = x1.squaredNorm() - a2;
   if (g1 >= 0.0)
   {
-    u_[p].setZero();  // outside the patch: undeformed (it re-enters under eq. 8)
-    step_error_[p] = 0.0;
-    inside_[p] = sliding_[p] = 0;
+    leavePatch(p);
     return;
   }
   double share = 1.0;  // part of the substep spent inside
@@ -674,9 +678,7 @@ void BrushTransient::advanceArcs(const ContactKinematics& kin, double dt, int co
       const Eigen::Vector2d x_end = o_ + R_ * l;
       if (x_end.squaredNorm() >= a2)
       {
-        u_[p].setZero();  // outside the patch: undeformed (it re-enters under eq. 8)
-        step_error_[p] = 0.0;
-        inside_[p] = sliding_[p] = 0;
+        leavePatch(p);
         continue;
       }
       Eigen::Vector2d x = o0 + R0 * (l + h_ * shift.cast<double>());
@@ -720,18 +722,15 @@ const BrushTransient::ArcMap& BrushTransient::arcMap(const ContactKinematics& ki
   const double tau = (count - k) * step, psi_dot = kin.psi_dot, rate = kin.omegaGamma();
   const Eigen::Matrix2d J = (Eigen::Matrix2d() << 0.0, -1.0, 1.0, 0.0).finished();
   // W by Gauss-Legendre's five-point rule on panels that turn by at most half a radian (exact to rounding there)
-  static constexpr double kNodes[5] = { 0.046910077030668, 0.230765344947158, 0.5, 0.769234655052842,
-                                        0.953089922969332 };
-  static constexpr double kWeights[5] = { 0.118463442528095, 0.239314335249683, 0.284444444444444,
-                                          0.239314335249683, 0.118463442528095 };
+  const numerics::GaussLegendre& rule = numerics::gaussLegendre(5);
   const int panels = std::max(1, static_cast<int>(std::ceil(std::max(std::abs(psi_dot), std::abs(rate)) * tau / 0.5)));
   const double width = tau / panels;
   Eigen::Matrix2d W = Eigen::Matrix2d::Zero();
   for (int q = 0; q < panels; ++q)
-    for (int n = 0; n < 5; ++n)
+    for (int n = 0; n < rule.m; ++n)
     {
-      const double s = (q + kNodes[n]) * width;
-      W += kWeights[n] * width * rotation(psi_dot * s) * rotationIntegral(rate, s);
+      const double s = (q + 0.5 * (1.0 + rule.x[n])) * width;
+      W += 0.5 * rule.w[n] * width * rotation(psi_dot * s) * rotationIntegral(rate, s);
     }
   m.A = rotation(-psi_dot * tau);
   m.C = kin.omega_z * m.A * J * rotationIntegral(psi_dot + rate, tau);

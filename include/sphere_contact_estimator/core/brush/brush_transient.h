@@ -238,6 +238,7 @@ private:
   long last_steps_ = 0;          // the sliding steps of the last whole-step update, and its travel (predictWork)
   double last_travel_ = 0.0;
   void substep(const ContactKinematics& kin, double dt);
+  void leavePatch(std::size_t p);  // a bristle outside the patch: undeformed, its error and state cleared
   // the turn coupling's exact rotation over a time (with tilt), its matrices for a whole substep and half of one kept
   struct Coupling;
   // one bristle's substep from x0 to x1 (either law; outside the patch at x1: undeformed)
