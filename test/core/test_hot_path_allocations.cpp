@@ -220,6 +220,20 @@ TEST(HotPath, EveryModelAllocatesNothingPerMessage)
             << "brush model " << static_cast<int>(brush) << ", law " << static_cast<int>(law) << ", tilt " << tilt
             << ":" << where;
       }
+  // with tilt, a budget that cannot pay for every substep: the bristles that need them share it (coarser substeps,
+  // their own arc maps)
+  for (SlidingLaw law : { SlidingLaw::Coulomb, SlidingLaw::Rigid })
+  {
+    EstimatorSettings s;
+    s.brush_model = BrushModelKind::Transient;
+    s.sliding_law = law;
+    s.tilt = true;
+    s.resolution = 32;
+    s.work_budget = 50000;
+    std::string where;
+    EXPECT_EQ(secondPassAllocations(s, stream, where), 0)
+        << "tilt at 32 within a short budget, law " << static_cast<int>(law) << ":" << where;
+  }
   for (CylinderModelKind cylinder : { CylinderModelKind::Off, CylinderModelKind::Exact, CylinderModelKind::Expansion,
                                       CylinderModelKind::Table })
     for (bool covariance : { false, true })

@@ -208,6 +208,8 @@ void BrushTransient::resizeState(std::size_t size, bool scratch)
     v->resize(size);
   for (auto* v : scratch ? std::array{ &slip_travel_scratch_, &step_error_scratch_ } : std::array{ &slip_travel_, &step_error_ })
     v->resize(size);
+  if (!scratch)
+    arc_stepping_.resize(size);
 }
 
 bool BrushTransient::coarsen()
@@ -269,6 +271,7 @@ void BrushTransient::reset()
   std::fill(jump_.begin(), jump_.end(), Eigen::Vector2d::Zero());
   V_r_.setZero();
   omega_gamma_ = 0.0;
+  arc_visit_share_ = 1.0;
   have_last_kin_ = false;
   held_travel_ = 0.0;
   fill_travel_ = 0.0;
@@ -302,23 +305,29 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
       f.flags |= brush_flags::kSubstepsTruncated;
     }
     int count = n < 0 ? kMaxSubsteps : n;
-    // fewer substeps than accuracy wants where the work budget cannot pay for them (a fixed lattice, or auto's at its
-    // coarsest): the answer then makes no claim beyond the friction circle's, nor do the next ones (suspect_)
-    const long point_work = static_cast<long>(w_) * w_ * kPointWork;
-    const long affordable = (work_budget_ - sumsWork()) / point_work;  // and the sums
-    if (count > affordable)
-    {
-      count = static_cast<int>(std::max(1L, affordable));
-      short_of_work = true;
-      f.flags |= brush_flags::kSubstepsTruncated;
-    }
     if (p_.tilt && stepping_ == TransientStepping::WholeStep)
-      advanceArcs(kin, dt, count);
+    {
+      // bristle by bristle, within the budget: where it cannot pay for every substep, the bristles that need them share
+      // fewer, longer ones, their error counted (advanceArcs)
+      if (!advanceArcs(kin, dt, count))
+        f.flags |= brush_flags::kSubstepsTruncated;
+    }
     else
+    {
+      // fewer substeps than accuracy wants where the work budget cannot pay for them (a fixed lattice, or auto's at its
+      // coarsest): the answer then makes no claim beyond the friction circle's, nor do the next ones (suspect_)
+      const long point_work = static_cast<long>(w_) * w_ * kPointWork;
+      const long affordable = (work_budget_ - sumsWork()) / point_work;  // and the sums
+      if (count > affordable)
+      {
+        count = static_cast<int>(std::max(1L, affordable));
+        short_of_work = true;
+        f.flags |= brush_flags::kSubstepsTruncated;
+      }
       for (int s = 0; s < count; ++s)
         substep(kin, dt / count);
-    // (counted as every point at every substep: what the adhering bristles' closed forms spare is not counted)
-    work_ += static_cast<long>(count) * w_ * w_ * kPointWork;
+      work_ += static_cast<long>(count) * w_ * w_ * kPointWork;
+    }
   }
   if (short_of_work)
   {
@@ -412,7 +421,21 @@ long BrushTransient::predictWork(const ContactKinematics& kin, double dt) const
     return static_cast<long>(w_) * w_ * kBristleWork + sumsWork() +
            static_cast<long>(predictSteps(kin, dt)) * kStepWork;
   }
+  if (stepping_ == TransientStepping::WholeStep)
+    return arcsWork(dt > 0.0 ? substeps(kin, dt) : 0, w_);
   return substepsWork(dt > 0.0 ? substeps(kin, dt) : 0, w_);
+}
+
+long BrushTransient::arcsWork(int n, long w) const
+{
+  // every point's closed form (or its being outside), the sums, and the substeps at the last update's share of points
+  // times substeps, with room for that share to grow by half (where they do not fit, the stepped bristles take fewer
+  // substeps, their error counted), and never more than the lattice's loop would count: a point that closes after v
+  // substeps counts v kPointWork + kBristleWork with v < n, at most n kPointWork
+  const double share = std::min(1.0, 1.5 * arc_visit_share_ + 0.05);
+  const double visits = share * (n < 0 ? kMaxSubsteps : n) * static_cast<double>(w * w);
+  return std::min(w * w * (kBristleWork + kSumWork) + static_cast<long>(std::ceil(visits)) * kPointWork,
+                  substepsWork(n, w));
 }
 
 long BrushTransient::predictFinerWork(const ContactKinematics& kin, double dt) const
@@ -424,8 +447,11 @@ long BrushTransient::predictFinerWork(const ContactKinematics& kin, double dt) c
   }
   // substeps (tilt): the finer lattice's own count (about twice this one's: half the spacing) over its window, as
   // predictWork counts them (8 times this one's prediction was 1.7 times a 16's step at 8, 66 k units against 39 k: a
-  // lattice the budget had cut to 8 never came back)
-  return substepsWork(dt > 0.0 ? substepsAt(kin, dt, 0.5 * h_) : 0, windowWidth(2 * p_.resolution));
+  // lattice the budget had cut to 8 never came back); stepped bristle by bristle, the share of them this one's took
+  const int n = dt > 0.0 ? substepsAt(kin, dt, 0.5 * h_) : 0;
+  if (stepping_ == TransientStepping::WholeStep)
+    return arcsWork(n, windowWidth(2 * p_.resolution));
+  return substepsWork(n, windowWidth(2 * p_.resolution));
 }
 
 bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
@@ -636,7 +662,7 @@ void BrushTransient::substepBristle(const ContactKinematics& kin, const Friction
   sliding_[p] = r.sliding;
 }
 
-void BrushTransient::advanceArcs(const ContactKinematics& kin, double dt, int count)
+bool BrushTransient::advanceArcs(const ContactKinematics& kin, double dt, int count)
 {
   // The same substeps as substep() (the roots' rigid motion of eq. 31 over each), taken bristle by bristle: the lattice's
   // pose moves over the whole update and the window is recentred on the patch's new place first, then each bristle
@@ -656,20 +682,34 @@ void BrushTransient::advanceArcs(const ContactKinematics& kin, double dt, int co
   }
   const Eigen::Vector2i shift = recentre();  // bristle (i, j) now was (i, j) + shift at the start
   // the closed forms along arcs of at most a quarter turn (arcStaysInside's sagitta), each remaining span's map once
-  const bool arcs = count <= kArcMaps && std::abs(rate) * dt <= 0.5 * boost::math::double_constants::pi;
-  if (arcs)
-    for (int k = 0; k <= count; ++k)
-      arc_maps_[k].ready = false;
-  const Coupling coupling(-kin.psi_dot, step);
+  const bool arcs = std::abs(rate) * dt <= 0.5 * boost::math::double_constants::pi;
+  const auto clear = [&](std::vector<ArcMap>& maps, int substeps) {
+    for (int k = 0; k <= std::min(substeps, kArcMaps); ++k)
+      maps[k].ready = false;
+  };
+  clear(arc_maps_, count);
   const FrictionCap cap(p_);
   const double a2 = p_.a * p_.a;
-  const auto adheres = [&](std::size_t p, const Eigen::Vector2d& x, const Eigen::Vector2d& x_end, int k) {
-    if (!arcs || !inside_[p] || sliding_[p] || !arcStaysInside(kin, cap, u_[p], x, x_end, (count - k) * step))
+  // an adhering bristle at x after k of n substeps of length h, out of reach of its bound over the rest: in closed form
+  const auto adheres = [&](std::vector<ArcMap>& maps, std::size_t p, const Eigen::Vector2d& x,
+                           const Eigen::Vector2d& x_end, int k, int n, double h) {
+    if (!arcs || n > kArcMaps || !inside_[p] || sliding_[p] || !arcStaysInside(kin, cap, u_[p], x, x_end, (n - k) * h))
       return false;
-    const ArcMap& m = arcMap(kin, k, count, step);
+    const ArcMap& m = arcMap(maps, kin, k, n, h);
     u_[p] = m.A * u_[p] - m.C * x + m.d;
     return true;
   };
+  // The work: kBristleWork for a point outside at the end or a closed form, kPointWork for each substep, so at most
+  // kPointWork a point and substep, as the lattice's loop counts. First every point that leaves the patch or adheres
+  // out of reach from the start (most of a rolling patch); then the rest, which may take every substep. Each of those
+  // takes every substep while the budget left pays for them all at the same share for it and every one after it; where
+  // it does not, the bristle takes that share's fewer, longer substeps along its arc (still in closed form once out of
+  // reach), so that a shortfall is shared among all the bristles left, not put on the last rows, and what a bristle
+  // does not use goes to the ones after it. Such a bristle carries 3 bounds as its error (it and the true deflection
+  // within the bound, and the rigid law's onset jump, at most one bound, in its cell), which the estimate sums with the
+  // steps' errors until it leaves.
+  long work = 0, visits = 0;
+  std::size_t stepping = 0;
   for (int j = 0; j < w_; ++j)
     for (int i = 0; i < w_; ++i)
     {
@@ -677,18 +717,71 @@ void BrushTransient::advanceArcs(const ContactKinematics& kin, double dt, int co
       const Eigen::Vector2d l((i - c0_) * h_, (j - c0_) * h_);
       const Eigen::Vector2d x_end = o_ + R_ * l;
       if (x_end.squaredNorm() >= a2)
-      {
         leavePatch(p);
+      else if (!adheres(arc_maps_, p, o0 + R0 * (l + h_ * shift.cast<double>()), x_end, 0, count, step))
+      {
+        arc_stepping_[stepping++] = p;
         continue;
       }
-      Eigen::Vector2d x = o0 + R0 * (l + h_ * shift.cast<double>());
-      for (int k = 0; k < count && !adheres(p, x, x_end, k); ++k)
-      {
-        const Eigen::Vector2d next = k + 1 == count ? x_end : Eigen::Vector2d(Q * x - c);
-        substepBristle(kin, cap, coupling, p, x, next, step);
-        x = next;
-      }
+      work += kBristleWork;
     }
+  long pool = work_budget_ - work_ - sumsWork() - work;
+  bool enough = true;
+  const Coupling coupling(-kin.psi_dot, step);
+  int level = count;  // the substeps of the coarse level whose coupling, motion and maps are kept
+  Coupling coarse = coupling;
+  Eigen::Matrix2d Q_level = Q;
+  Eigen::Vector2d c_level = c;
+  for (std::size_t n = 0; n < stepping; ++n)
+  {
+    const std::size_t p = arc_stepping_[n];
+    const long share = pool / (static_cast<long>(stepping - n) * kPointWork);
+    const int substeps = share >= count ? count : static_cast<int>(std::max(1L, share));
+    const bool full = substeps == count;
+    if (!full && substeps != level)
+    {
+      level = substeps;
+      const double h = dt / level;
+      coarse = Coupling(-kin.psi_dot, h);
+      Q_level = rotation(rate * h);
+      c_level = rotationIntegral(rate, h) * kin.V_r;
+      clear(coarse_maps_, level);
+    }
+    const double h = full ? step : dt / substeps;
+    const int i = static_cast<int>(p % w_), j = static_cast<int>(p / w_);
+    const Eigen::Vector2d l((i - c0_) * h_, (j - c0_) * h_);
+    const Eigen::Vector2d x_end = o_ + R_ * l;
+    Eigen::Vector2d x = o0 + R0 * (l + h_ * shift.cast<double>());
+    long used = 0;
+    for (int k = 0; k < substeps; ++k)
+    {
+      if (k > 0 && adheres(full ? arc_maps_ : coarse_maps_, p, x, x_end, k, substeps, h))
+      {
+        used += kBristleWork;
+        break;
+      }
+      const Eigen::Vector2d next =
+          k + 1 == substeps ? x_end : Eigen::Vector2d(full ? Q * x - c : Q_level * x - c_level);
+      substepBristle(kin, cap, full ? coupling : coarse, p, x, next, h);
+      used += kPointWork;
+      ++visits;
+      x = next;
+    }
+    if (!full)
+    {
+      enough = false;
+      if (inside_[p])
+        step_error_[p] = 3.0 * p_.mu * cap.qz(x_end.squaredNorm()) / p_.k;
+    }
+    pool -= used;
+    work += used;
+  }
+  work_ += work;
+  // (cut short, what it would have taken: every bristle it stepped at every substep, so that auto does not read a cut
+  // update as a cheap one)
+  const double wanted = enough ? static_cast<double>(visits) : static_cast<double>(stepping) * count;
+  arc_visit_share_ = wanted / (static_cast<double>(count) * w_ * w_);
+  return enough;
 }
 
 bool BrushTransient::arcStaysInside(const ContactKinematics& kin, const FrictionCap& cap, const Eigen::Vector2d& u,
@@ -707,7 +800,8 @@ bool BrushTransient::arcStaysInside(const ContactKinematics& kin, const Friction
   return reach < (1.0 - 1e-9) * bound;
 }
 
-const BrushTransient::ArcMap& BrushTransient::arcMap(const ContactKinematics& kin, int k, int count, double step)
+const BrushTransient::ArcMap& BrushTransient::arcMap(std::vector<ArcMap>& maps, const ContactKinematics& kin, int k,
+                                                    int count, double step) const
 {
   // An adhering bristle along its arc over tau (the docs' closed form, checked against these substeps: their difference
   // falls as their length cubed). In the frame turning with the coupling, v = R(psi_dot t) u, eq. 31's
@@ -716,7 +810,7 @@ const BrushTransient::ArcMap& BrushTransient::arcMap(const ContactKinematics& ki
   //   u(tau) = R(-psi_dot tau) (u0 - S(psi_dot, tau) V_s - omega_z J S(psi_dot + omega_gamma, tau) x0
   //                              + omega_z J W V_r),   W = Int_0^tau R(psi_dot s) S(omega_gamma, s) ds,
   // affine in u0 and x0 with the same matrices for every bristle: u = A u0 - C x0 + d.
-  ArcMap& m = arc_maps_[k];
+  ArcMap& m = maps[k];
   if (m.ready)
     return m;
   const double tau = (count - k) * step, psi_dot = kin.psi_dot, rate = kin.omegaGamma();

@@ -222,7 +222,7 @@ private:
   auto perPointArrays()  // all of them, the scratch twins too
   {
     return std::tie(u_, jump_, inside_, sliding_, slip_travel_, step_error_, u_scratch_, jump_scratch_, inside_scratch_,
-                    sliding_scratch_, slip_travel_scratch_, step_error_scratch_);
+                    sliding_scratch_, slip_travel_scratch_, step_error_scratch_, arc_stepping_);
   }
   // without tilt: every bristle over the whole step along its straight path (lattice/bristle_advance.h); false where the
   // work budget cut the sliding steps short
@@ -249,8 +249,14 @@ private:
                    const Eigen::Vector2d& x_start, const Eigen::Vector2d& x1, double t, bool was_sliding);
   Eigen::Vector2i recentre();  // returns the shift (di, dj): point (i, j) now holds what (i + di, j + dj) held
   // with tilt: the substeps bristle by bristle, an adhering one in closed form along its arc once it cannot reach its
-  // bound within the update (arcStaysInside, arcMap)
-  void advanceArcs(const ContactKinematics& kin, double dt, int count);
+  // bound within the update (arcStaysInside, arcMap), the work counted as taken; false where the budget could not pay
+  // for every substep and the bristles that needed them shared what it left
+  bool advanceArcs(const ContactKinematics& kin, double dt, int count);
+  // the share of points times substeps the last update took (or, cut short, would have taken) bristle by bristle
+  double arc_visit_share_ = 1.0;
+  // what an update by n substeps stepped bristle by bristle is predicted to count over a window w points wide
+  long arcsWork(int n, long w) const;
+  std::vector<std::size_t> arc_stepping_;  // the points advanceArcs steps (sized with the lattice: no allocation)
   bool arcStaysInside(const ContactKinematics& kin, const FrictionCap& cap, const Eigen::Vector2d& u,
                       const Eigen::Vector2d& x, const Eigen::Vector2d& x_end, double tau) const;
   // u(tau) = A u0 - C x0 + d for an adhering bristle from x0 over the update's last count - k substeps, kept per k
@@ -262,7 +268,8 @@ private:
   };
   static constexpr int kArcMaps = 256;  // updates of more substeps take all of them
   std::vector<ArcMap> arc_maps_ = std::vector<ArcMap>(kArcMaps + 1);  // sized once: the hot path does not allocate
-  const ArcMap& arcMap(const ContactKinematics& kin, int k, int count, double step);
+  std::vector<ArcMap> coarse_maps_ = std::vector<ArcMap>(kArcMaps + 1);  // the same for a budget's fewer substeps
+  const ArcMap& arcMap(std::vector<ArcMap>& maps, const ContactKinematics& kin, int k, int count, double step) const;
   double streakBound(const Slips& s) const;
   // the sums' cells: along a bristle's motion, how far the patch edge lies ahead and behind and which neighbour is
   // upstream; and its deflection over its cell on the lattice k (0) or sub-lattice k (1-4), with the cell's weight
