@@ -708,17 +708,20 @@ bool BrushTransient::advanceArcs(const ContactKinematics& kin, double dt, int co
   // does not use goes to the ones after it. Such a bristle carries 3 bounds as its error (it and the true deflection
   // within the bound, and the rigid law's onset jump, at most one bound, in its cell), which the estimate sums with the
   // steps' errors until it leaves.
+  // where bristle (i, j) starts the update (it stood at (i, j) + shift of the pose then) and ends it (position)
+  const auto start = [&](int i, int j) -> Eigen::Vector2d {
+    return o0 + R0 * (Eigen::Vector2d((i - c0_) * h_, (j - c0_) * h_) + h_ * shift.cast<double>());
+  };
   long work = 0, visits = 0;
   std::size_t stepping = 0;
   for (int j = 0; j < w_; ++j)
     for (int i = 0; i < w_; ++i)
     {
       const std::size_t p = index(i, j);
-      const Eigen::Vector2d l((i - c0_) * h_, (j - c0_) * h_);
-      const Eigen::Vector2d x_end = o_ + R_ * l;
+      const Eigen::Vector2d x_end = position(i, j);
       if (x_end.squaredNorm() >= a2)
         leavePatch(p);
-      else if (!adheres(arc_maps_, p, o0 + R0 * (l + h_ * shift.cast<double>()), x_end, 0, count, step))
+      else if (!adheres(arc_maps_, p, start(i, j), x_end, 0, count, step))
       {
         arc_stepping_[stepping++] = p;
         continue;
@@ -749,9 +752,8 @@ bool BrushTransient::advanceArcs(const ContactKinematics& kin, double dt, int co
     }
     const double h = full ? step : dt / substeps;
     const int i = static_cast<int>(p % w_), j = static_cast<int>(p / w_);
-    const Eigen::Vector2d l((i - c0_) * h_, (j - c0_) * h_);
-    const Eigen::Vector2d x_end = o_ + R_ * l;
-    Eigen::Vector2d x = o0 + R0 * (l + h_ * shift.cast<double>());
+    const Eigen::Vector2d x_end = position(i, j);
+    Eigen::Vector2d x = start(i, j);
     long used = 0;
     for (int k = 0; k < substeps; ++k)
     {
