@@ -1184,6 +1184,35 @@ TEST(BrushTransient, SubstepsCutShortKeepTheirErrorInTheEstimateUntilTheirBristl
   }
 }
 
+TEST(BrushTransient, SlidingStepsTheBudgetCannotPayForAreFlagged)
+{
+  // Without tilt each bristle crosses the whole update along its path; under eq. (4b) a sliding one takes steps, and
+  // past the budget the rest of its path in one return mapping (2 bounds of error, in the estimate). Such an update
+  // says so (kSubstepsTruncated) however early the budget ran out: one that left nothing for any step used to pass
+  // unflagged (auto's warm start into sweep seed 1014's pivot: no step taken, estimate 2.0, no flag, and carried as if
+  // it were the steady state). Fig. 4 at 16 with spin, settled: an update of a patch radius with no room for a step is
+  // flagged and within its estimate of the model at 64; the next, unbudgeted, is not flagged.
+  const BrushParameters p = test::figure4Parameters(false, 16, SlidingLaw::Coulomb);
+  BrushTransient model(p), reference(test::figure4Parameters(false, 64, SlidingLaw::Coulomb));
+  const ContactKinematics k = ContactKinematics::fromSlips({ 0.05, 0.02 }, 3.33, 1.0, 1.0);
+  for (int m = 0; m < 8; ++m)
+  {
+    model.update(k, 0.02);
+    reference.update(k, 0.02);
+  }
+  const long least = BrushTransient::leastUpdateWork(p.resolution, false);
+  model.setWorkBudget(least);
+  const BrushForces cut = model.update(k, p.a), f = reference.update(k, p.a);
+  EXPECT_TRUE(cut.flags & brush_flags::kSubstepsTruncated);
+  EXPECT_LE(cut.work, least);
+  EXPECT_GT(cut.sliding_fraction, 0.0) << "no bristle slides: nothing was cut";
+  EXPECT_LE(forceDistance(cut, f, p), cut.error_estimate + f.error_estimate);
+  model.setWorkBudget(BrushModel::kUnlimitedBudget);
+  const BrushForces next = model.update(k, 0.02);
+  reference.update(k, 0.02);
+  EXPECT_FALSE(next.flags & brush_flags::kSubstepsTruncated);
+}
+
 TEST(BrushTransient, ABudgetThatFallsShortIsSharedByEveryBristleThatTakesSubsteps)
 {
   // With tilt, bristle by bristle (advanceArcs): where the budget cannot pay for every substep of the bristles that

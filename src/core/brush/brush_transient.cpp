@@ -516,7 +516,7 @@ bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
       const int taken = advance.advance(s, x0, duration, at_rim, allowed);
       steps += taken;
       pool -= taken * kStepWork;
-      enough = enough && (pool >= 0 || taken == 0);
+      enough = enough && !s.cut;  // (its remainder in one step, or events it did not follow)
       u_[p] = s.u;
       sliding_[p] = s.sliding;
       slip_travel_[p] = s.slip_travel;

@@ -192,6 +192,13 @@ private:
   ContactKinematics last_rolling_;  // the last inputs with V_r above standstill
   bool have_rolling_ = false;
   BrushForces offset_;  // carried difference at the last switch
+  // The last answer before its offset (the model's own), and the warm-started lattice's forces before this update's
+  // step (enterTransient): the two models at the same state, the last inputs' steady state, for the switch's offset
+  // (warm_entered_: this update's warm start rolled the longest path under the last update's inputs, no step cut)
+  BrushForces last_raw_;
+  BrushForces warm_forces_;
+  bool warm_entered_ = false;
+  bool rolled_before_ = false;  // the last update's slips were defined: last_rolling_ holds its inputs
   bool answered_ = false;  // an answer since the last reset: switches are then smoothed
   BrushModelKind last_model_ = BrushModelKind::Linear;
   Slips last_slips_;  // of the last update, for visitBristles

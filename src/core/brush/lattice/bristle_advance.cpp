@@ -162,7 +162,10 @@ int BristleAdvance::advance(BristleState& s, const Eigen::Vector2d& x_start, dou
   {
     const bool final_event = event >= kMaxEvents;
     if (final_event && event == kMaxEvents)
+    {
       s.step_error += 2.0 * c_;  // events it did not follow: no claim beyond |u|, |u_true| <= the bound
+      s.cut = true;
+    }
     if (!s.sliding)
     {
       const Piece p = piece(x, s.u);

@@ -18,6 +18,7 @@ struct BristleState
   double slip_travel = 0.0;                       ///< travel since the onset of sliding [m] (infinite while adhering)
   Eigen::Vector2d jump = Eigen::Vector2d::Zero();  ///< rigid law: deflection before minus after that onset [m]
   double step_error = 0.0;                        ///< eq. (4b): bound on the deflection's error from the time steps [m]
+  bool cut = false;  ///< the advance was cut short (its sliding steps past max_steps, its events past kMaxEvents)
 };
 
 /// One bristle over a whole update along its straight path (no tilt: the roots move at -V_r, eq. 31 with

@@ -377,6 +377,7 @@ inline double BristleAdvance::CoulombSlide::remainder(double tau)
     trial *= q1.b / n;
   s_.u = trial;
   s_.step_error = 2.0 * std::max(q1.b, a_.at(p_, tau).b);
+  s_.cut = true;
   return slides ? INFINITY : span_;
 }
 
