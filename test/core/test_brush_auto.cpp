@@ -11,6 +11,9 @@
 // GTest
 #include <gtest/gtest.h>
 
+// Boost
+#include <boost/math/constants/constants.hpp>
+
 // Package
 #include "brush_test_support.h"
 #include "sphere_contact_estimator/core/brush/brush_auto.h"
@@ -281,6 +284,70 @@ TEST(BrushAuto, EstimateCoversRandomHistories)
   EXPECT_LE(short_count, checked / 100) << "worst error / estimate " << worst;
   EXPECT_LE(worst, 2.0);
   EXPECT_EQ(unflagged_over, 0);
+}
+
+TEST(BrushAuto, AWarmStartAfterTheFrameTurnedRollsAlongThePhysicalDirection)
+{
+  // The estimator turns the patch frame where the rolling direction jumps (ContactEstimator: more than 0.5 rad between
+  // messages, or rolling again after standstill): the lattice, the lag and the carried forces turn with it, and so must
+  // the last rolling inputs, which a warm start into the transient model rolls. Fig. 4's robot at 16 settles in the
+  // steady family, then the slips jump: the same history expressed in axes turned by a quarter or half a turn before
+  // the jump (the lattice's axes then lie along the motion in both) answers the same forces, turned, to rounding.
+  // Unturned, the warm start rolled the old direction's coordinates in the new axes, a state turned by the angle:
+  // 0.13-0.18 of mu F_z apart.
+  BrushParameters p = figure4Parameters();
+  p.resolution = 16;
+  p.accuracy_target = 1e-2;
+  const double V = 1.0, dt = 0.002;
+  const auto slips = [&](int i, int jump) {
+    return ContactKinematics::fromSlips(i < jump ? Eigen::Vector2d(0.05, 0.02) : Eigen::Vector2d(-0.1, 0.25), 3.33,
+                                        1.0, V);
+  };
+  int left = -1;  // where auto leaves the transient model at the held inputs
+  {
+    BrushAuto probe(p);
+    for (int i = 0; i < 1000 && left < 0; ++i)
+    {
+      probe.update(slips(i, 100000), dt);
+      if (i >= 100 && probe.lastModel() != BrushModelKind::Transient)
+        left = i;
+    }
+  }
+  ASSERT_GE(left, 100);
+  const int jump = left + 80;  // past the transit the lattice rolls on beside the steady answers: a warm start
+  for (double alpha : { 0.5 * boost::math::double_constants::pi, boost::math::double_constants::pi })
+  {
+    const double c = std::cos(alpha), s = std::sin(alpha);
+    const auto turned = [&](const Eigen::Vector2d& v) { return Eigen::Vector2d(c * v.x() + s * v.y(), -s * v.x() + c * v.y()); };
+    BrushAuto model(p), in_turned_axes(p);
+    double worst = 0.0;
+    for (int i = 0; i <= jump + 20; ++i)
+    {
+      if (i == jump)
+        in_turned_axes.rotateFrame(alpha);
+      ContactKinematics k = slips(i, jump), k_turned = k;
+      if (i >= jump)
+      {
+        k_turned.V_r = turned(k.V_r);
+        k_turned.V_s = turned(k.V_s);
+      }
+      const BrushForces f = model.update(k, dt), g = in_turned_axes.update(k_turned, dt);
+      if (i < jump)
+        continue;
+      if (i == jump)
+      {
+        ASSERT_EQ(model.lastModel(), BrushModelKind::Transient);
+      }
+      BrushForces f_turned = f;
+      const Eigen::Vector2d F = turned(Eigen::Vector2d(f.F_x, f.F_y));
+      f_turned.F_x = F.x();
+      f_turned.F_y = F.y();
+      const double distance = forceDistance(f_turned, g, p);
+      worst = std::max(worst, distance);
+      EXPECT_LE(distance, 1e-6) << "turned by " << alpha << ", message " << i - jump << " after the jump";
+    }
+    std::printf("axes turned by %.3f rad before the jump: the two answers %.2e of mu F_z apart at most\n", alpha, worst);
+  }
 }
 
 TEST(BrushAuto, StandstillTakesTheTransientModel)

@@ -86,6 +86,10 @@ void BrushAuto::rotateFrame(double alpha)
     f->F_x = turned.x();
     f->F_y = turned.y();
   }
+  // and the last rolling inputs, which a warm start rolls: physical velocities too (unturned, a warm start after a
+  // heading jump rolled the patch along the old direction's coordinates in the new axes)
+  for (Eigen::Vector2d* v : { &last_rolling_.V_r, &last_rolling_.V_s })
+    *v = Eigen::Vector2d(c * v->x() + s * v->y(), -s * v->x() + c * v->y());
 }
 
 double BrushAuto::effectiveTarget() const
