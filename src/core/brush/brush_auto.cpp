@@ -445,10 +445,13 @@ void BrushAuto::chooseFamily(const ContactKinematics& kin, const Slips& s, doubl
     steady_distance_ = 0.0;
   else if (!check.steady && probation_)
   {
-    // back within the transit after leaving: the lattice rolled all along, and goes on from where it is
+    // back within the transit after leaving: the lattice rolled all along, and goes on from where it is; its forces
+    // before this step are of the state the last answer is of (carryAcrossSwitches)
     probation_ = false;
     in_transient_ = true;
     steady_distance_ = 0.0;
+    warm_forces_ = transient_->forces();
+    warm_entered_ = rolled_before_;
   }
   else if (!check.steady)
     enterTransient(kin, dt);  // from the state before this step
@@ -600,12 +603,13 @@ void BrushAuto::carryAcrossSwitches(BrushForces& out, const Slips& s, const Eige
   const bool switched = answered_ && (model != before || resolution != before_resolution);
   if (switched && warm && before != BrushModelKind::Transient)
   {
-    // Entering the transient model from the steady family with a warm start: the difference between the two models
-    // at the same state, the last answer's (the steady state of the last inputs) and the warm lattice's before this
-    // step. Not the steady model at these inputs: the switch happens where the steady state does not hold at them, and
-    // carrying its difference put that lag into the answer (sweep seed 5021 with tilt, braking from 1.39 to 0.13 m/s
-    // into a spin within a 30-Hz message: 0.343 of mu F_z off, against 0.040 with this). Only from an answer that met
-    // its target: a difference from one that did not is mostly its own error (below).
+    // Entering the transient model from the steady family with a warm start, or with the lattice that rolled on beside
+    // it: the difference between the two models at the same state, the last answer's and the lattice's before this
+    // step. Not the steady model's at these inputs: the switch happens where the steady state does not hold at them,
+    // and carrying that difference put its lag into the answer (sweep seed 5021 with tilt, braking from 1.39 to 0.13
+    // m/s into a spin within a 30-Hz message: 0.343 of mu F_z off, against 0.040 with this; 5 messages after leaving
+    // in a test of Fig. 4, 0.074 and 0.85 against 0.0009 and 0.0005). Only from an answer that met its target: a
+    // difference from one that did not is mostly its own error (below).
     if (last_raw_.error_estimate <= target)
     {
       offset_.F_x += last_raw_.F_x - warm_forces_.F_x;
