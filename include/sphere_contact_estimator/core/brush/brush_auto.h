@@ -192,10 +192,10 @@ private:
   ContactKinematics last_rolling_;  // the last inputs with V_r above standstill
   bool have_rolling_ = false;
   BrushForces offset_;  // carried difference at the last switch
-  // The last answer before its offset (the model's own), and the warm-started lattice's forces before this update's
-  // step (enterTransient): the two models at the same state, the last inputs' steady state, for the switch's offset
-  // (warm_entered_: this update's warm start rolled the longest path under the last update's inputs, no step cut; or
-  // the lattice that rolled on beside the last steady answers goes on)
+  // The last answer before its offset (the model's own), and the lattice's forces before this update's step: the two
+  // models at the same state, for the switch's offset (warm_entered_: this update's warm start rolled the longest path
+  // under the last update's inputs, no step cut, so it holds their steady state; or the lattice that rolled on beside
+  // the last steady answers goes on)
   BrushForces last_raw_;
   BrushForces warm_forces_;
   bool warm_entered_ = false;
