@@ -77,19 +77,20 @@ void BrushAuto::rotateFrame(double alpha)
   transient_->rotateFrame(alpha);
   if (finer_)
     finer_->rotateFrame(alpha);
-  // a force, physical, in the turned axes (x' = R(-alpha) x)
+  // a physical vector in the turned axes (x' = R(-alpha) x)
   const double c = std::cos(alpha), s = std::sin(alpha);
+  const auto turned = [c, s](double x, double y) { return Eigen::Vector2d(c * x + s * y, -s * x + c * y); };
   lag_->rotate(alpha);
   for (BrushForces* f : { &offset_, &last_raw_, &warm_forces_ })
   {
-    const Eigen::Vector2d turned(c * f->F_x + s * f->F_y, -s * f->F_x + c * f->F_y);
-    f->F_x = turned.x();
-    f->F_y = turned.y();
+    const Eigen::Vector2d F = turned(f->F_x, f->F_y);
+    f->F_x = F.x();
+    f->F_y = F.y();
   }
-  // and the last rolling inputs, which a warm start rolls: physical velocities too (unturned, a warm start after a
-  // heading jump rolled the patch along the old direction's coordinates in the new axes)
+  // and the last rolling inputs, which a warm start rolls: velocities (unturned, a warm start after a heading jump
+  // rolled the patch along the old direction's coordinates in the new axes)
   for (Eigen::Vector2d* v : { &last_rolling_.V_r, &last_rolling_.V_s })
-    *v = Eigen::Vector2d(c * v->x() + s * v->y(), -s * v->x() + c * v->y());
+    *v = turned(v->x(), v->y());
 }
 
 double BrushAuto::effectiveTarget() const
@@ -284,11 +285,12 @@ void BrushAuto::enterTransient(const ContactKinematics& kin, double dt)
       transient_->setWorkBudget(predicted + static_cast<long>(share * static_cast<double>(room - predicted)));
       const BrushForces rolled = transient_->update(last_rolling_, roll);
       spent_ += rolled.work;
-      warm_forces_ = transient_->forces();
       // The steady state of the last inputs only where every bristle in the patch entered during the roll and took every
       // sliding step it wanted (a roll cut short is not: above), and only where those inputs were the last update's,
-      // which the last answer is of.
+      // which the last answer is of (its forces, a pass of the sums, only then: carryAcrossSwitches reads them then only)
       warm_entered_ = V * roll >= longestPath(p_) && !(rolled.flags & brush_flags::kSubstepsTruncated) && rolled_before_;
+      if (warm_entered_)
+        warm_forces_ = transient_->forces();
     }
     cost_ += transientStepCost(transient_resolution_) * std::ceil(5.0 * transient_resolution_);
   }
@@ -450,8 +452,9 @@ void BrushAuto::chooseFamily(const ContactKinematics& kin, const Slips& s, doubl
     probation_ = false;
     in_transient_ = true;
     steady_distance_ = 0.0;
-    warm_forces_ = transient_->forces();
     warm_entered_ = rolled_before_;
+    if (warm_entered_)
+      warm_forces_ = transient_->forces();
   }
   else if (!check.steady)
     enterTransient(kin, dt);  // from the state before this step
