@@ -686,7 +686,9 @@ BrushForces noisyMessage(BrushAuto& model, std::mt19937_64& rng, std::normal_dis
   EXPECT_TRUE(std::isfinite(f.error_estimate));
   EXPECT_EQ(f.error_estimate > model.lastTarget(), (f.flags & brush_flags::kAccuracyNotMet) != 0);
   if (f.flags & brush_flags::kBudgetLimited)
+  {
     EXPECT_TRUE(f.flags & brush_flags::kAccuracyNotMet) << "a met target is held back by nothing";
+  }
   return f;
 }
 

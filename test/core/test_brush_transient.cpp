@@ -7,6 +7,9 @@
 #include <random>
 #include <vector>
 
+// Boost
+#include <boost/math/constants/constants.hpp>
+
 // GTest
 #include <gtest/gtest.h>
 
@@ -1000,6 +1003,67 @@ TEST(BrushTransient, BadStepsAreRejected)
   const BrushForces g = with_tilt.update(fast, 1e3);
   EXPECT_TRUE(g.flags & brush_flags::kSubstepsTruncated);
   EXPECT_TRUE(std::isfinite(g.F_x));
+}
+
+TEST(BrushTransient, ForcesAfterAnUpdateAreItsAnswerAtNoWork)
+{
+  // forces() gives the last update's answer without summing the lattice again (auto reads it at its switches and counts
+  // what it costs, forcesWork): the sums of that very state, dropped by every other change of the state
+  for (auto law : kSlidingLaws)
+  for (bool tilt : { false, true })
+  {
+    SCOPED_TRACE(::testing::Message() << toString(law) << " tilt " << tilt);
+    const BrushParameters p = figure4Parameters(tilt, 24, law);
+    BrushTransient model(p);
+    EXPECT_GT(model.forcesWork(), 0);  // nothing kept before an update
+    std::mt19937_64 rng(21);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    BrushForces f;
+    for (int i = 0; i < 40; ++i)
+    {
+      const ContactKinematics k =
+          ContactKinematics::fromSlips({ 0.05 + 0.03 * u(rng), 0.03 * u(rng) }, 2.0 * u(rng), 1.0, 1.0);
+      f = model.update(k, 0.002 + 0.004 * (1.0 + u(rng)));
+      EXPECT_EQ(model.forcesWork(), 0);
+      const BrushForces g = model.forces();
+      EXPECT_EQ(g.F_x, f.F_x);
+      EXPECT_EQ(g.F_y, f.F_y);
+      EXPECT_EQ(g.M_z, f.M_z);
+      EXPECT_EQ(g.error_estimate, f.error_estimate);
+      EXPECT_EQ(g.sliding_fraction, f.sliding_fraction);
+      EXPECT_EQ(g.max_utilisation, f.max_utilisation);
+      EXPECT_EQ(g.flags, 0u);
+      EXPECT_EQ(g.work, 0);
+    }
+    // what the sums give of that state: a retune that changes no force (the target) drops the kept answer, not the state
+    BrushTransient retuned = model;
+    BrushParameters q = p;
+    q.accuracy_target *= 2.0;
+    retuned.setParameters(q);
+    EXPECT_GT(retuned.forcesWork(), 0);
+    const BrushForces s = retuned.forces();
+    EXPECT_EQ(s.F_x, f.F_x);
+    EXPECT_EQ(s.F_y, f.F_y);
+    EXPECT_EQ(s.M_z, f.M_z);
+    EXPECT_EQ(s.sliding_fraction, f.sliding_fraction);
+    // a turn of the frame by a right angle: the forces in the new axes (F_x, F_y) -> (F_y, -F_x), not the kept ones
+    const double scale = p.mu * p.F_z;
+    ASSERT_GT(std::abs(f.F_x + f.F_y) / scale, 0.1);  // (kept ones would be far off)
+    BrushTransient turned = model;
+    turned.rotateFrame(0.5 * boost::math::double_constants::pi);
+    EXPECT_GT(turned.forcesWork(), 0);
+    const BrushForces t = turned.forces();
+    EXPECT_NEAR(t.F_x, f.F_y, (f.error_estimate + t.error_estimate) * scale);
+    EXPECT_NEAR(t.F_y, -f.F_x, (f.error_estimate + t.error_estimate) * scale);
+    // coarsened, and reset
+    BrushTransient coarse = model;
+    ASSERT_TRUE(coarse.coarsen());
+    EXPECT_GT(coarse.forcesWork(), 0);
+    EXPECT_NE(coarse.forces().F_x, f.F_x);
+    model.reset();
+    EXPECT_GT(model.forcesWork(), 0);
+    EXPECT_EQ(model.forces().F_x, 0.0);
+  }
 }
 
 TEST(BrushTransient, CoarseningKeepsEveryOtherBristle)

@@ -287,10 +287,10 @@ void BrushAuto::enterTransient(const ContactKinematics& kin, double dt)
       spent_ += rolled.work;
       // The steady state of the last inputs only where every bristle in the patch entered during the roll and took every
       // sliding step it wanted (a roll cut short is not: above), and only where those inputs were the last update's,
-      // which the last answer is of (its forces, a pass of the sums, only then: carryAcrossSwitches reads them then only)
+      // which the last answer is of (its forces: the roll's answer, no work)
       warm_entered_ = V * roll >= longestPath(p_) && !(rolled.flags & brush_flags::kSubstepsTruncated) && rolled_before_;
       if (warm_entered_)
-        warm_forces_ = transient_->forces();
+        warm_forces_ = latticeForces(*transient_);
     }
     cost_ += transientStepCost(transient_resolution_) * std::ceil(5.0 * transient_resolution_);
   }
@@ -454,7 +454,7 @@ void BrushAuto::chooseFamily(const ContactKinematics& kin, const Slips& s, doubl
     steady_distance_ = 0.0;
     warm_entered_ = rolled_before_;
     if (warm_entered_)
-      warm_forces_ = transient_->forces();
+      warm_forces_ = latticeForces(*transient_);  // (its last roll's answer: no work, unless a retune came between)
   }
   else if (!check.steady)
     enterTransient(kin, dt);  // from the state before this step
@@ -485,6 +485,12 @@ BrushForces BrushAuto::stepTransient(const ContactKinematics& kin, const Slips& 
   const BrushForces f = stepLattice(*transient_, transient_resolution_, kin, s, dt);
   entry_error_ *= lag_->slowest(s.V_r * dt / (0.5 * longestPath(p_) / p_.a));  // the slowest renewal
   return f;
+}
+
+BrushForces BrushAuto::latticeForces(const BrushTransient& lattice)
+{
+  spent_ += lattice.forcesWork();
+  return lattice.forces();
 }
 
 BrushForces BrushAuto::stepLattice(BrushTransient& lattice, int resolution, const ContactKinematics& kin,
@@ -531,7 +537,7 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
     if (finer_travel_ >= longestPath(p_))
     {
       // continuity: the coarse answer's difference from the finer one is carried and decays like any switch
-      const BrushForces fine = finer_->forces();
+      const BrushForces fine = latticeForces(*finer_);  // (its step's answer: no work)
       offset_.F_x += out.F_x - fine.F_x;
       offset_.F_y += out.F_y - fine.F_y;
       offset_.M_z += out.M_z - fine.M_z;
@@ -623,8 +629,9 @@ void BrushAuto::carryAcrossSwitches(BrushForces& out, const Slips& s, const Eige
   else if (switched)
   {
     BrushForces previous = out;
-    if (before == BrushModelKind::Transient)
-      previous = transient_->forces();
+    if (before == BrushModelKind::Transient && transient_->forcesWork() <= work_budget_ - spent_)
+      previous = latticeForces(*transient_);  // (its step beside this answer, or its last one: no work, but after a
+                                              // coarsening or a turn of the frame a pass of the sums, where it fits)
     else if (s.defined && before == BrushModelKind::Linear)
     {
       previous = linear_.evaluate(sigma, s.phi);

@@ -139,6 +139,7 @@ bool BrushTransient::setParameters(const BrushParameters& parameters)
     // steady field stays a valid control variate until it is re-evaluated: no jump at a retune)
     held_travel_ = 0.0;
     clearSpreadWindow();  // spreads in fractions of another mu F_z
+    forces_kept_ = false;
   }
   return lattice_changes;
 }
@@ -163,6 +164,7 @@ void BrushTransient::swapStorage(BrushTransient& other)
 {
   auto theirs = other.perPointArrays();
   perPointArrays().swap(theirs);  // a tuple of references: swaps what they refer to
+  forces_kept_ = other.forces_kept_ = false;
 }
 
 void BrushTransient::rotateFrame(double alpha)
@@ -176,6 +178,7 @@ void BrushTransient::rotateFrame(double alpha)
   have_last_kin_ = false;
   clearSpreadWindow();  // the phases were in the old axes
   rows_->invalidate();
+  forces_kept_ = false;
   const Eigen::Matrix2d Q = rotation(-alpha);  // components in axes turned by alpha
   R_ = Q * R_;
   o_ = Q * o_;
@@ -252,6 +255,7 @@ bool BrushTransient::coarsen()
   resizeState(size, true);
   rows_->reset();  // the rows moved: the control variate is evaluated again
   clearSpreadWindow();  // the spreads were of the finer lattice
+  forces_kept_ = false;
   // the sliding steps this lattice is predicted to take, as predictFinerWork relates a finer lattice's to its own (the
   // finer lattice's count had made this one's step look four times as dear: sweep seed 1253, its step not fitting at
   // 32, was cut to 8 where 16 fitted)
@@ -278,6 +282,7 @@ void BrushTransient::reset()
   suspect_ = false;
   suspect_centre_.setZero();
   clearSpreadWindow();
+  forces_kept_ = false;
   rows_->reset();
   const double a2 = p_.a * p_.a;
   for (int j = 0; j < w_; ++j)
@@ -289,6 +294,7 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
 {
   checkInput(kin, dt);
   work_ = 0;
+  forces_kept_ = false;
   BrushForces f;
   bool short_of_work = false;
   if (dt > 0.0 && !p_.tilt && stepping_ == TransientStepping::WholeStep)
@@ -388,6 +394,9 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   f.sliding_fraction = g.sliding_fraction;
   f.max_utilisation = g.max_utilisation;
   f.error_estimate = estimate(fixed, spread) + cutShortError();
+  kept_forces_ = g;  // forces() of this state, as it would sum them again
+  kept_forces_.error_estimate = f.error_estimate;
+  forces_kept_ = true;
   f.flagAbove(p_.accuracy_target);  // (at a fixed resolution; auto flags its answers against its own target)
   work_ += sumsWork();
   f.work = work_;
@@ -1012,6 +1021,8 @@ Eigen::Vector2d BrushTransient::cellSum(int i, int j, const Motion& m, int k, do
 
 BrushForces BrushTransient::forces() const
 {
+  if (forces_kept_)
+    return kept_forces_;
   double fixed = 0.0, spread = 0.0;
   BrushForces f = sums(fixed, spread);
   f.error_estimate = estimate(fixed, spread) + cutShortError();

@@ -141,6 +141,9 @@ private:
                bool steady_exists, double travel, long max_work);
   void enterTransient(const ContactKinematics& kin, double dt);
   void rollOnProbation(const ContactKinematics& kin, const Slips& s, double dt);
+  // A lattice's forces as they stand (its last step's answer, or a pass of the sums where its state changed since),
+  // their work spent.
+  BrushForces latticeForces(const BrushTransient& lattice);
   // One step of a lattice at its resolution within what is left of the budget: its work spent and its cost counted.
   BrushForces stepLattice(BrushTransient& lattice, int resolution, const ContactKinematics& kin, const Slips& s,
                           double dt);

@@ -106,8 +106,12 @@ public:
     forEachBristle(visit);
   }
 
-  /// Forces of the current bristle state, without advancing.
+  /// Forces of the current bristle state, without advancing: the last update's answer (without its flags and work)
+  /// while nothing changed the state since, else a pass of the sums (forcesWork).
   BrushForces forces() const;
+  /// What forces() costs now in BrushForces::work units: nothing where it returns the last update's answer, else the
+  /// sums' (a caller within a work budget counts it: auto's continuity across switches).
+  long forcesWork() const { return forces_kept_ ? 0 : sumsWork(); }
 
   /// The patch frame turned by alpha [rad] about its z axis (paper frame, z down): bristle positions and
   /// deflections, which are physical, are re-expressed in the new axes. For heading changes that the turn
@@ -380,6 +384,10 @@ private:
   Eigen::Vector2d V_r_ = Eigen::Vector2d::Zero();
   double omega_gamma_ = 0.0;
   double streak_estimate_ = 0.0;  // streakBound of the last update's inputs
+  // the last update's answer as forces() gives it, while forces_kept_: every change of the state but an update's (reset,
+  // coarsen, rotateFrame, a retune) drops it
+  BrushForces kept_forces_;
+  bool forces_kept_ = false;
   Indirect<TransientRows> rows_;  // the rows' control variate (no tilt, rows along the rolling direction)
   ContactKinematics last_kin_;     // the inputs of the last update, and how far the patch rolled under them
   bool have_last_kin_ = false;
