@@ -5,6 +5,7 @@
 // STL
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 // GTest
 #include <gtest/gtest.h>
@@ -29,6 +30,40 @@ void expectSound(const BrushForces& f, const BrushParameters& p)
   EXPECT_GE(f.sliding_fraction, 0.0);
   EXPECT_LE(f.sliding_fraction, 1.0);
   EXPECT_LE(f.max_utilisation, 1.0 + 1e-12);
+}
+
+TEST(BrushExtremes, SlipsPassedOnAreTheKinematicsOwn)
+{
+  // update(kinematics, slips, dt), which the estimator and auto call with the slips they computed, answers as
+  // update(kinematics, dt) bit for bit along a random history through standstill; slips of other kinematics, or of
+  // another standstill speed, throw, changing nothing (the model answers on as one that never saw them)
+  const BrushParameters p = figure4Parameters(false, 16);
+  for (BrushModelKind kind : { BrushModelKind::Linear, BrushModelKind::Steady, BrushModelKind::Transient, BrushModelKind::Auto })
+  {
+    SCOPED_TRACE(toString(kind));
+    const auto passed = makeBrushModel(kind, p), own = makeBrushModel(kind, p);
+    std::mt19937_64 rng(31);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int i = 0; i < 60; ++i)
+    {
+      const double V_r = i % 20 < 3 ? 0.5 * p.standstill_speed : 0.5 + 0.5 * u(rng);  // standstill now and then
+      const ContactKinematics k = ContactKinematics::fromSlips({ 0.05 * u(rng), 0.05 * u(rng) }, 3.0 * u(rng), 1.0, V_r);
+      const Slips s = computeSlips(k, p.standstill_speed);
+      if (i % 10 == 5)
+      {
+        const ContactKinematics other = ContactKinematics::fromSlips({ 0.01, 0.0 }, 0.0, 1.0, 2.0 * V_r + 0.1);
+        EXPECT_THROW(passed->update(k, computeSlips(other, p.standstill_speed), 0.01), std::invalid_argument);
+        // the same rolling speed, but defined at another standstill speed than the model's
+        EXPECT_THROW(passed->update(k, computeSlips(k, s.defined ? 2.0 * V_r : 0.25 * V_r), 0.01), std::invalid_argument);
+      }
+      const BrushForces a = passed->update(k, s, 0.01), b = own->update(k, 0.01);
+      EXPECT_EQ(a.F_x, b.F_x) << "message " << i;
+      EXPECT_EQ(a.F_y, b.F_y) << "message " << i;
+      EXPECT_EQ(a.M_z, b.M_z) << "message " << i;
+      EXPECT_EQ(a.error_estimate, b.error_estimate) << "message " << i;
+      EXPECT_EQ(a.flags, b.flags) << "message " << i;
+    }
+  }
 }
 
 TEST(BrushExtremes, RandomKinematicsAndParameters)

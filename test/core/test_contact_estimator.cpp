@@ -447,11 +447,12 @@ public:
     : BrushModel(p), inner_(makeBrushModel(BrushModelKind::Transient, p)), throw_at_(throw_at)
   {
   }
-  BrushForces update(const ContactKinematics& k, double dt) override
+  using BrushModel::update;
+  BrushForces update(const ContactKinematics& k, const Slips& s, double dt) override
   {
     if (calls_++ == throw_at_)
       throw std::logic_error("a defect planted by the test");
-    return inner_->update(k, dt);
+    return inner_->update(k, s, dt);
   }
   void reset() override
   {

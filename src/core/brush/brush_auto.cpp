@@ -296,12 +296,11 @@ void BrushAuto::enterTransient(const ContactKinematics& kin, double dt)
   }
 }
 
-BrushForces BrushAuto::update(const ContactKinematics& kin, double dt)
+BrushForces BrushAuto::update(const ContactKinematics& kin, const Slips& s, double dt)
 {
-  checkInput(kin, dt);
+  checkInput(kin, s, dt);
   spent_ = 0;
   budget_held_ = false;
-  const Slips s = computeSlips(kin, p_.standstill_speed);
   last_slips_ = s;
   const double target = target_ = effectiveTarget();
   const BrushModelKind before = last_model_;
@@ -497,7 +496,7 @@ BrushForces BrushAuto::stepLattice(BrushTransient& lattice, int resolution, cons
                                    const Slips& s, double dt)
 {
   lattice.setWorkBudget(remaining());
-  const BrushForces f = lattice.update(kin, dt);
+  const BrushForces f = lattice.update(kin, s, dt);
   spent_ += f.work;
   cost_ += transientStepCost(resolution) * std::max(1.0, std::ceil(s.V_r * dt / (p_.a / resolution)));
   return f;

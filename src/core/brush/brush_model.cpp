@@ -45,7 +45,7 @@ BrushModel::BrushModel(const BrushParameters& parameters) : p_(parameters)
   p_.validate();
 }
 
-void BrushModel::checkInput(const ContactKinematics& k, double dt)
+void BrushModel::checkInput(const ContactKinematics& k, const Slips& s, double dt) const
 {
   if (!(k.V_r.allFinite() && k.V_s.allFinite() && std::isfinite(k.omega_z) && std::isfinite(k.psi_dot)))
     throw std::invalid_argument("brush model: contact kinematics must be finite");
@@ -55,12 +55,20 @@ void BrushModel::checkInput(const ContactKinematics& k, double dt)
     msg << "brush model: time step dt = " << dt << " s must be finite and >= 0";
     throw std::invalid_argument(msg.str());
   }
+  // (the slips' other components follow from the kinematics as these two do; a caller's own computeSlips gives them all)
+  if (!(s.V_r == k.V_r.norm() && s.defined == (s.V_r >= p_.standstill_speed && s.V_r > 0.0)))
+  {
+    std::ostringstream msg;
+    msg << "brush model: slips (V_r = " << s.V_r << " m/s, " << (s.defined ? "defined" : "undefined")
+        << ") are not those of the kinematics (|V_r| = " << k.V_r.norm() << " m/s) at standstill_speed "
+        << p_.standstill_speed << " m/s";
+    throw std::invalid_argument(msg.str());
+  }
 }
 
-BrushForces BrushSlipModel::update(const ContactKinematics& kin, double dt)
+BrushForces BrushSlipModel::update(const ContactKinematics& kin, const Slips& s, double dt)
 {
-  checkInput(kin, dt);
-  const Slips s = computeSlips(kin, p_.standstill_speed);
+  checkInput(kin, s, dt);
   last_ = s;
   if (!s.defined)
   {

@@ -290,9 +290,9 @@ void BrushTransient::reset()
       inside_[index(i, j)] = position(i, j).squaredNorm() < a2;
 }
 
-BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
+BrushForces BrushTransient::update(const ContactKinematics& kin, const Slips& slips, double dt)
 {
-  checkInput(kin, dt);
+  checkInput(kin, slips, dt);
   work_ = 0;
   forces_kept_ = false;
   BrushForces f;
@@ -348,7 +348,6 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, double dt)
   fill_travel_ += travel;
   last_kin_ = kin;
   have_last_kin_ = true;
-  const Slips slips = computeSlips(kin, p_.standstill_speed);
   // the rows' correction within what the work budget leaves after the lattice's steps and the sums
   work_ += rows_->update(p_, slips, { R_, position(0, 0), h_, w_ }, held, travel, fill_travel_,
                         work_budget_ - work_ - sumsWork());

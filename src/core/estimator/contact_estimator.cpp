@@ -148,7 +148,8 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   o.heading = heading_;
   o.turn_rate = psi_dot;
   o.rolling_speed = speed;
-  const ContactKinematics kin = contactKinematics(in, psi_dot, o);
+  Slips slips;  // of kin: computed once, the brush model's too
+  const ContactKinematics kin = contactKinematics(in, psi_dot, o, slips);
   o.work = 0;
   // A model that throws has a defect, which no input should reach; one message answered without its forces, flagged,
   // and the model's state reset, serves a robot better than a node that dies (or a replay that stops) at it.
@@ -156,7 +157,7 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   try
   {
     propagateBrushCovariance(in, speed, o);
-    runBrush(kin, o.dt, in.omega.z(), o);
+    runBrush(kin, slips, o.dt, in.omega.z(), o);
   }
   catch (const std::exception& error)
   {
@@ -266,7 +267,8 @@ void ContactEstimator::followHeading(const Eigen::Vector2d& V_r, double speed, d
   was_rolling_ = rolling;
 }
 
-ContactKinematics ContactEstimator::contactKinematics(const EstimatorInput& in, double psi_dot, ContactEstimateData& o) const
+ContactKinematics ContactEstimator::contactKinematics(const EstimatorInput& in, double psi_dot, ContactEstimateData& o,
+                                                     Slips& sl) const
 {
   // ground -> contact frame (yaw by the heading) -> paper frame
   const double c = std::cos(heading_), s = std::sin(heading_);
@@ -277,7 +279,7 @@ ContactKinematics ContactEstimator::contactKinematics(const EstimatorInput& in, 
   const ContactKinematics kin = ContactKinematics::fromWheel(fromRos(toContact(in.omega)),
                                                              fromRos(Eigen::Vector2d(toContact(in.v_contact).head<2>())),
                                                              settings_.rolling_radius, zFromRos(psi_dot));
-  const Slips sl = computeSlips(kin, settings_.standstill_speed);
+  sl = computeSlips(kin, settings_.standstill_speed);
   o.sliding_velocity = toRos(kin.V_s);
   o.slips_defined = sl.defined;
   o.slip = toRos(sl.sigma);
@@ -303,7 +305,8 @@ void ContactEstimator::clearBrush(ContactEstimateData& o) const
   o.brush_power = 0.0;
 }
 
-void ContactEstimator::runBrush(const ContactKinematics& kin, double dt, double omega_z, ContactEstimateData& o)
+void ContactEstimator::runBrush(const ContactKinematics& kin, const Slips& slips, double dt, double omega_z,
+                                ContactEstimateData& o)
 {
   clearBrush(o);
   if (brush_)
@@ -313,7 +316,7 @@ void ContactEstimator::runBrush(const ContactKinematics& kin, double dt, double 
     // message's total stays within the budget, whatever the model (EstimatorSettings::validate: at a fixed resolution
     // the transient model's least update fits)
     brush_->setWorkBudget(settings_.work_budget - o.work - BrushModel::kWorkGranularity);
-    o.brush = brush_->update(kin, dt);
+    o.brush = brush_->update(kin, slips, dt);
     o.work += o.brush.work;
     o.brush_model_used = brush_->lastModel();
     o.brush_resolution = brush_->lastResolution();

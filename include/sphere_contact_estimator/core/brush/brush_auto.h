@@ -54,7 +54,8 @@ public:
   explicit BrushAuto(const BrushParameters& parameters);
   ~BrushAuto() override;
 
-  BrushForces update(const ContactKinematics& kinematics, double dt) override;
+  using BrushModel::update;
+  BrushForces update(const ContactKinematics& kinematics, const Slips& slips, double dt) override;
   void reset() override;
   /// Turns its transient state and the force history with the frame (entering the transient later from a
   /// steady state needs no turning: that state is built in the new frame).

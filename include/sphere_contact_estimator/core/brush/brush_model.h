@@ -40,7 +40,15 @@ public:
   /// Forces after advancing by dt [s] with the kinematics held constant over the step. The steady
   /// models ignore dt; the transient model integrates over it. Throws std::invalid_argument for
   /// non-finite kinematics or a negative or non-finite dt.
-  virtual BrushForces update(const ContactKinematics& kinematics, double dt) = 0;
+  BrushForces update(const ContactKinematics& kinematics, double dt)
+  {
+    return update(kinematics, computeSlips(kinematics, p_.standstill_speed), dt);
+  }
+  /// The same with the slips of these kinematics at hand: computeSlips(kinematics, parameters().standstill_speed), which
+  /// a caller that has them passes on (the estimator to its model, auto to its lattices: once per message). Slips of
+  /// other kinematics or another standstill speed (their rolling speed or whether they are defined differ) throw
+  /// std::invalid_argument too.
+  virtual BrushForces update(const ContactKinematics& kinematics, const Slips& slips, double dt) = 0;
   /// Forgets all history (transient state); a no-op for the steady models.
   virtual void reset() {}
   /// The patch frame turned by alpha [rad] about its z axis (paper frame, z down), for heading changes the
@@ -82,7 +90,8 @@ public:
   const BrushParameters& parameters() const { return p_; }
 
 protected:
-  static void checkInput(const ContactKinematics& kinematics, double dt);
+  // finite kinematics, their slips (update's), and dt finite and >= 0; else std::invalid_argument
+  void checkInput(const ContactKinematics& kinematics, const Slips& slips, double dt) const;
 
   BrushParameters p_;
   long work_budget_ = kUnlimitedBudget;
@@ -95,7 +104,8 @@ class BrushSlipModel : public BrushModel
 {
 public:
   using BrushModel::BrushModel;
-  BrushForces update(const ContactKinematics& kinematics, double dt) override;
+  using BrushModel::update;
+  BrushForces update(const ContactKinematics& kinematics, const Slips& slips, double dt) override;
 
   /// Forces from slips in the epsilon = (0, 1) frame: sigma, spin phi, and its tilt and turn parts
   /// phi_gamma + phi_psi = phi (eq. 13).

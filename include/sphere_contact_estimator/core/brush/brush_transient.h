@@ -91,7 +91,8 @@ public:
   BrushTransient& operator=(const BrushTransient&);
   BrushTransient& operator=(BrushTransient&&) noexcept;
 
-  BrushForces update(const ContactKinematics& kinematics, double dt) override;
+  using BrushModel::update;
+  BrushForces update(const ContactKinematics& kinematics, const Slips& slips, double dt) override;
   void reset() override;
   BrushModelKind kind() const override { return BrushModelKind::Transient; }
   /// setParameters(); always true (the state is kept or reset, as setParameters says).

@@ -180,9 +180,10 @@ private:
   void judgeRolling(const EstimatorInput& in, double speed, ContactEstimateData& o);
   void followHeading(const Eigen::Vector2d& V_r, double speed, double body_heading, double dt, bool first,
                      std::uint32_t& flags);
-  ContactKinematics contactKinematics(const EstimatorInput& in, double psi_dot, ContactEstimateData& out) const;
+  ContactKinematics contactKinematics(const EstimatorInput& in, double psi_dot, ContactEstimateData& out,
+                                      Slips& slips) const;
   void clearBrush(ContactEstimateData& out) const;  // no brush answer: the configured model's, zero
-  void runBrush(const ContactKinematics& kin, double dt, double omega_z, ContactEstimateData& out);
+  void runBrush(const ContactKinematics& kin, const Slips& slips, double dt, double omega_z, ContactEstimateData& out);
   void runRollingResistance(double speed, ContactEstimateData& out) const;
   void propagateBrushCovariance(const EstimatorInput& in, double speed, ContactEstimateData& out);
   bool reuseBrushCovariance(const Eigen::Matrix<double, 5, 5>& S, const ContactEstimateData& out) const;
