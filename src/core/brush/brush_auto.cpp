@@ -628,11 +628,10 @@ void BrushAuto::carryAcrossSwitches(BrushForces& out, const Slips& s, const Eige
   else if (switched)
   {
     BrushForces previous = out;
-    const long pass = before == BrushModelKind::Transient ? transient_->forcesWork() : 0;
-    if (before == BrushModelKind::Transient && (pass == 0 || pass <= work_budget_ - spent_))
-      previous = latticeForces(*transient_);  // (its step beside this answer, or its last one: no work, even where the
-                                              // budget is spent to its granularity; after a coarsening or a turn of
-                                              // the frame a pass of the sums, where it fits)
+    // (the lattice's step beside this answer, or its last one: no work, even where the budget is spent to its
+    // granularity; after a coarsening or a turn of the frame a pass of the sums, where it fits)
+    if (before == BrushModelKind::Transient && transient_->forcesWork() <= std::max(0L, work_budget_ - spent_))
+      previous = latticeForces(*transient_);
     else if (s.defined && before == BrushModelKind::Linear)
     {
       previous = linear_.evaluate(sigma, s.phi);

@@ -139,7 +139,6 @@ bool BrushTransient::setParameters(const BrushParameters& parameters)
     // steady field stays a valid control variate until it is re-evaluated: no jump at a retune)
     held_travel_ = 0.0;
     clearSpreadWindow();  // spreads in fractions of another mu F_z
-    forces_kept_ = false;
   }
   return lattice_changes;
 }
@@ -178,7 +177,6 @@ void BrushTransient::rotateFrame(double alpha)
   have_last_kin_ = false;
   clearSpreadWindow();  // the phases were in the old axes
   rows_->invalidate();
-  forces_kept_ = false;
   const Eigen::Matrix2d Q = rotation(-alpha);  // components in axes turned by alpha
   R_ = Q * R_;
   o_ = Q * o_;
@@ -255,7 +253,6 @@ bool BrushTransient::coarsen()
   resizeState(size, true);
   rows_->reset();  // the rows moved: the control variate is evaluated again
   clearSpreadWindow();  // the spreads were of the finer lattice
-  forces_kept_ = false;
   // the sliding steps this lattice is predicted to take, as predictFinerWork relates a finer lattice's to its own (the
   // finer lattice's count had made this one's step look four times as dear: sweep seed 1253, its step not fitting at
   // 32, was cut to 8 where 16 fitted)
@@ -282,7 +279,6 @@ void BrushTransient::reset()
   suspect_ = false;
   suspect_centre_.setZero();
   clearSpreadWindow();
-  forces_kept_ = false;
   rows_->reset();
   const double a2 = p_.a * p_.a;
   for (int j = 0; j < w_; ++j)

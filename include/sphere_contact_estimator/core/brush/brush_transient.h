@@ -354,12 +354,14 @@ private:
   {
     return fixed + (other_phases_ ? 1.0 : kUnseenPhases) * std::max(spread, window_spread_);
   }
+  // (the kept answer's estimate was of that window: it goes with it)
   void clearSpreadWindow()
   {
     spread_count_ = spread_next_ = dense_run_ = 0;
     phase_.setZero();
     window_spread_ = 0.0;
     other_phases_ = false;
+    forces_kept_ = false;
   }
 
   TransientStepping stepping_ = TransientStepping::WholeStep;
@@ -385,8 +387,8 @@ private:
   Eigen::Vector2d V_r_ = Eigen::Vector2d::Zero();
   double omega_gamma_ = 0.0;
   double streak_estimate_ = 0.0;  // streakBound of the last update's inputs
-  // the last update's answer as forces() gives it, while forces_kept_: every change of the state but an update's (reset,
-  // coarsen, rotateFrame, a retune) drops it
+  // the last update's answer as forces() gives it, while forces_kept_: every change of the state but an update's drops it
+  // (reset, coarsen, rotateFrame and a retune clear the spreads' window, clearSpreadWindow; swapStorage)
   BrushForces kept_forces_;
   bool forces_kept_ = false;
   Indirect<TransientRows> rows_;  // the rows' control variate (no tilt, rows along the rolling direction)
