@@ -56,7 +56,8 @@ static_assert(ContactEstimate::COVARIANCE_OK == static_cast<int>(CovarianceStatu
 static_assert(ContactEstimate::COVARIANCE_METHOD_NONE == static_cast<int>(CovarianceMethod::None) &&
               ContactEstimate::COVARIANCE_METHOD_ZERO == static_cast<int>(CovarianceMethod::Zero) &&
               ContactEstimate::COVARIANCE_METHOD_JACOBIAN == static_cast<int>(CovarianceMethod::Jacobian) &&
-              ContactEstimate::COVARIANCE_METHOD_UNSCENTED == static_cast<int>(CovarianceMethod::Unscented));
+              ContactEstimate::COVARIANCE_METHOD_UNSCENTED == static_cast<int>(CovarianceMethod::Unscented) &&
+              ContactEstimate::COVARIANCE_METHOD_RANDOM_WALK == static_cast<int>(CovarianceMethod::RandomWalk));
 
 void toMessage(const ContactEstimateData& e, ContactEstimate& m)
 {

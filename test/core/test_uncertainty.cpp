@@ -5,6 +5,7 @@
 
 // STL
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <random>
@@ -25,6 +26,7 @@
 #include "sphere_contact_estimator/core/brush/brush_transient.h"
 #include "sphere_contact_estimator/core/brush/force_covariance.h"
 #include "sphere_contact_estimator/core/estimator/contact_estimator.h"
+#include "sphere_contact_estimator/core/estimator/standstill_covariance.h"
 #include "sphere_contact_estimator/core/numerics/covariance.h"
 #include "sphere_contact_estimator/core/numerics/unscented_transform.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_exact.h"
@@ -570,6 +572,137 @@ TEST(EstimateCovariance, NearStandstillWithASmallSpreadAgainstMonteCarlo)
   expectClose<3>(d->covariance.brush, Eigen::Matrix3d(mc.topLeftCorner<3, 3>()),
                  Eigen::Vector3d(1e-4 * limit, 1e-4 * limit, 1e-6 * limit), 0.10, 0.1, "0.2 m/s");
   EXPECT_NEAR(std::sqrt(d->covariance.rolling_resistance_force_variance / mc(3, 3)), 1.0, 0.1);
+}
+
+TEST(EstimateCovariance, StandstillRandomWalkAgainstMonteCarlo)
+{
+  // Parked, the slips are undefined and the forces are what the adhering bristles integrated: each message's odometry
+  // error stays in the state. The covariance the estimator walks (StandstillCovariance) against the spread of the
+  // forces over independent noise realisations of the same history, at three messages of it.
+  struct Case
+  {
+    const char* name;
+    BrushModelKind model;
+    double rate;          // [Hz]
+    double spin;          // omega_z while standing [rad/s]
+    double skid;          // before standing: rolled 0.1 s at 0.5 m/s with this lateral slip, noise-free (0: none)
+    int messages;         // standing, with noise
+    double body_heading;  // [rad]
+    double tolerance;     // on the ratio of the standard deviations (400 draws: sampling error about 3.5 %), and from
+                          // a model's own start on the correlations
+  };
+  const Case cases[] = {
+    // (measured: 1.14 and 1.15 at worst, the walk above the spread: the rim's bristles, with little bound, slide)
+    { "parked, auto, 1 kHz", BrushModelKind::Auto, 1000.0, 0.0, 0.0, 300, 0.7, 0.2 },
+    { "parked, transient, 100 Hz", BrushModelKind::Transient, 100.0, 0.0, 0.0, 12, -2.0, 0.2 },
+    // from a rolled field: approximate (bristles near their bounds slide and forget; measured 0.76 at worst, and the
+    // correlation of F_y and M_z 0.1 against 0.6: not claimed)
+    { "parked after a skid, auto, 1 kHz", BrushModelKind::Auto, 1000.0, 0.0, 0.05, 300, 0.0, 0.30 },
+    // most bristles slide: not followed
+    { "spinning in place, auto, 1 kHz", BrushModelKind::Auto, 1000.0, 4.0, 0.0, 300, 1.2, 0.0 },
+  };
+  Eigen::Matrix<double, 6, 1> sd;
+  sd << 0.004, 0.004, 0.0, 0.03, 0.03, 0.05;  // [m/s], [rad/s]: R_r sd(omega_x,y) = 3 mm/s, far below standstill
+  TwistCovariance C = TwistCovariance::Identity();
+  C(0, 4) = C(4, 0) = 0.5;  // the contact centre's and the sphere's velocities from the same encoders
+  C(1, 3) = C(3, 1) = -0.5;
+  const TwistCovariance twist = sd.asDiagonal() * C * sd.asDiagonal();
+  const Eigen::Matrix<double, 5, 5> S = usedTwistCovariance(twist);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 5, 5>> eig(S);
+  const Eigen::Matrix<double, 5, 5> root = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+  constexpr int kDraws = 400;
+  for (const Case& c : cases)
+  {
+    EstimatorSettings settings;
+    settings.brush_model = c.model;
+    const double dt = 1.0 / c.rate;
+    const int checks[3] = { c.messages / 6, c.messages / 2, c.messages - 1 };
+    std::vector<Eigen::Vector3d> F[3];
+    Eigen::Matrix3d walked[3] = { Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero() };
+    std::mt19937_64 rng(4242);
+    std::normal_distribution<double> g(0.0, 1.0);
+    int ok = 0, approximate = 0, undefined = 0, walks = 0;
+    for (int draw = 0; draw < kDraws; ++draw)
+    {
+      ContactEstimator e(settings);
+      double t = 0.0;
+      if (c.skid != 0.0)
+        for (int k = 0; k < static_cast<int>(0.1 * c.rate); ++k, t += dt)
+        {
+          EstimatorInput in = rolling(0.5, 0.0, c.skid, 0.0, 0.0);
+          in.stamp = t;
+          in.twist_covariance = TwistCovariance::Zero();  // exact: the state at the stop is known
+          ASSERT_NE(e.update(in), nullptr);
+        }
+      for (int k = 0; k < c.messages; ++k, t += dt)
+      {
+        Eigen::Matrix<double, 5, 1> z;
+        for (int i = 0; i < 5; ++i)
+          z(i) = g(rng);
+        const Eigen::Matrix<double, 5, 1> x = root * z;
+        EstimatorInput in;
+        in.stamp = t;
+        in.v_contact = Eigen::Vector3d(x(0), x(1), 0.0);
+        in.omega = Eigen::Vector3d(x(2), x(3), c.spin + x(4));
+        in.twist_covariance = twist;
+        in.body_heading = c.body_heading;
+        const ContactEstimateData* d = e.update(in);
+        ASSERT_NE(d, nullptr);
+        ASSERT_FALSE(d->slips_defined) << c.name << " " << k;
+        const EstimateCovariance& v = d->covariance;
+        if (v.status == CovarianceStatus::Undefined)
+        {
+          ++undefined;
+          EXPECT_EQ(v.brush_method, CovarianceMethod::None);
+          EXPECT_GT(d->brush.sliding_fraction, StandstillCovariance::kSlidingShare) << c.name << " " << k;
+          continue;
+        }
+        ++walks;
+        ASSERT_EQ(v.brush_method, CovarianceMethod::RandomWalk) << c.name << " " << k;
+        EXPECT_EQ(covarianceProblem<3>(v.brush), nullptr);
+        ok += v.status == CovarianceStatus::Ok;
+        approximate += v.status == CovarianceStatus::Approximate;
+        for (int i = 0; i < 3; ++i)
+          if (k == checks[i])
+          {
+            F[i].emplace_back(d->brush.F_x, d->brush.F_y, d->brush.M_z);
+            walked[i] += v.brush / kDraws;
+          }
+      }
+    }
+    if (c.tolerance == 0.0)
+    {
+      EXPECT_GT(undefined, kDraws * c.messages / 2) << c.name;  // spinning, from the first tens of milliseconds on
+      continue;
+    }
+    EXPECT_EQ(undefined, 0) << c.name;
+    EXPECT_EQ(c.skid == 0.0 ? ok : approximate, walks) << c.name;  // Ok only from the model's own start
+    double worst = 1.0;
+    for (int i = 0; i < 3; ++i)
+    {
+      ASSERT_EQ(F[i].size(), static_cast<std::size_t>(kDraws));
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      for (const auto& f : F[i])
+        mean += f / kDraws;
+      Eigen::Matrix3d mc = Eigen::Matrix3d::Zero();
+      for (const auto& f : F[i])
+        mc += (f - mean) * (f - mean).transpose() / (kDraws - 1);
+      for (int j = 0; j < 3; ++j)
+      {
+        const double ratio = std::sqrt(walked[i](j, j) / mc(j, j));
+        worst = std::abs(ratio - 1.0) > std::abs(worst - 1.0) ? ratio : worst;
+        EXPECT_NEAR(ratio, 1.0, c.tolerance) << c.name << ", message " << checks[i] << ", component " << j
+                                             << ": walked " << std::sqrt(walked[i](j, j)) << ", Monte Carlo "
+                                             << std::sqrt(mc(j, j));
+      }
+      for (int j = 0; j < 3 && c.skid == 0.0; ++j)
+        for (int l = j + 1; l < 3; ++l)
+          EXPECT_NEAR(walked[i](j, l) / std::sqrt(walked[i](j, j) * walked[i](l, l)),
+                      mc(j, l) / std::sqrt(mc(j, j) * mc(l, l)), c.tolerance)
+              << c.name << ", message " << checks[i] << ", correlation " << j << l;
+    }
+    std::printf("%s: worst walked / Monte Carlo standard deviation %.3f\n", c.name, worst);
+  }
 }
 
 TEST(AutoBelowTheNoise, TargetFollowsTheSpreadAndTheErrorStaysWithinIt)

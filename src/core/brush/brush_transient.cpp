@@ -1104,6 +1104,33 @@ void BrushTransient::gather(LatticeSums& g) const
   }
 }
 
+bool BrushTransient::adhesionResponse(Eigen::Matrix3d& response, long& work) const
+{
+  // F = k sum u dA, M_z = k sum (x_x u_y - x_y u_x) dA (sums()); an adhering bristle's u' = w with
+  // dw / d(V_s,x, V_s,y, omega_z) = [[-1, 0, x_y], [0, -1, -x_x]] (eq. 1, drive()); dA as the sums weigh the cells
+  const FrictionCap cap(p_);
+  double load = 0.0, S0 = 0.0, S2 = 0.0;
+  Eigen::Vector2d S1 = Eigen::Vector2d::Zero();
+  forEachBristle([&](const Eigen::Vector2d& x, const Eigen::Vector2d& /*u*/, bool sliding) {
+    load += cap.qz(x.squaredNorm());
+    if (sliding)
+      return;
+    S0 += 1.0;
+    S1 += x;
+    S2 += x.squaredNorm();
+  });
+  work = sumsWork();
+  response.setZero();
+  if (!(load > 0.0))
+    return true;  // no load: no forces to move
+  const double kdA = p_.k * rows_->load(0, p_.F_z) / load;
+  response << -S0, 0.0, S1.y(),  //
+      0.0, -S0, -S1.x(),         //
+      S1.y(), -S1.x(), -S2;
+  response *= kdA;
+  return true;
+}
+
 BrushForces BrushTransient::sums(double& fixed, double& spread) const
 {
   fixed = spread = 0.0;

@@ -72,7 +72,10 @@ void ContactEstimator::configure(const EstimatorSettings& next)
   if (cylinder_changes)
     rebuildCylinder(next);
   if (brush_changes)
+  {
     rebuildBrush(next);
+    walk_.lose();  // a retuned state's forces answer to new parameters: unknown until the slips are defined again
+  }
   settings_ = next;
   held_covariance_.valid = false;
   adopt();
@@ -105,6 +108,7 @@ void ContactEstimator::reset()
   turn_rate_ = 0.0;
   not_rolling_time_ = 0.0;
   held_covariance_.valid = false;
+  walk_.restart(Eigen::Matrix3d::Zero(), false);  // the model's own start
   if (brush_)
     brush_->reset();
 }
@@ -158,6 +162,8 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   {
     propagateBrushCovariance(in, speed, o);
     runBrush(kin, slips, o.dt, in.omega.z(), o);
+    if (o.covariance.brush_method == CovarianceMethod::RandomWalk)
+      walkBrushCovariance(in, o);  // this message's share, through the state the model has just advanced
   }
   catch (const std::exception& error)
   {
@@ -168,6 +174,7 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
     o.brush.flags = brush_flags::kModelFault;
     if (brush_)
       brush_->reset();
+    walk_.restart(Eigen::Matrix3d::Zero(), false);
   }
   try
   {
@@ -213,6 +220,7 @@ double ContactEstimator::advanceClock(double stamp, std::uint32_t& flags)
     {
       if (brush_)
         brush_->reset();
+      walk_.restart(Eigen::Matrix3d::Zero(), false);
       turn_rate_ = 0.0;
       was_rolling_ = false;
       flags |= estimate_flags::kGapReset;
@@ -405,7 +413,10 @@ void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double
   }
   c.status = in.twist_covariance_status;
   if (c.status != CovarianceStatus::Ok)
+  {
+    walk_.lose();  // this message's noise is unknown, and so what the state integrates from here
     return;
+  }
   const Eigen::Matrix<double, 5, 5> S = usedTwistCovariance(in.twist_covariance);
   const double R = settings_.rolling_radius;
   const Eigen::Matrix<double, 1, 5> dV = speedJacobian(R, heading_);
@@ -414,14 +425,19 @@ void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double
   {
     c = EstimateCovariance{};
     c.status = CovarianceStatus::Invalid;  // finite, but too large to carry through
+    walk_.lose();
     return;
   }
   if (!brush_)
     return;
   if (!o.slips_defined)
   {
-    c.status = CovarianceStatus::Undefined;  // no slips at standstill: the forces have no stateless map here
+    // no slips at standstill: the forces have no stateless map here, but the bristles' state integrates the noise
     held_covariance_.valid = false;
+    if (!walk_.known())
+      c.status = CovarianceStatus::Undefined;
+    else
+      publishWalk(o);  // the walk so far (auto's target follows it); this message's share once the model has run
     return;
   }
   // the slips divide by V_r: where its spread reaches the standstill speed, the linearisation is out of its range
@@ -435,6 +451,7 @@ void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double
     c.brush_age = o.stamp - h.stamp;
     if (near_standstill || !h.smooth)
       c.status = CovarianceStatus::Approximate;
+    walk_.restart(c.brush, true);  // (a rolled field: StandstillCovariance)
     return;
   }
   held_covariance_.valid = false;
@@ -455,11 +472,13 @@ void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double
   {
     c = EstimateCovariance{};
     c.status = CovarianceStatus::Invalid;  // the slips' covariance overflowed
+    walk_.lose();
     return;
   }
   if (!f.defined)
   {
     c.status = CovarianceStatus::Undefined;
+    walk_.lose();
     return;
   }
   // paper (x, y, z) = ROS (x, -y, -z): F_y and M_z change sign
@@ -471,12 +490,59 @@ void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double
   {
     c = EstimateCovariance{};
     c.status = CovarianceStatus::Invalid;
+    walk_.lose();
     return;
   }
   // where the forces kink or jump over the spread, the transform's moments are only approximate
   if (near_standstill || !f.smooth)
     c.status = CovarianceStatus::Approximate;
+  walk_.restart(c.brush, true);  // (a rolled field: StandstillCovariance)
   held_covariance_ = HeldCovariance{ true, o.stamp, S, p, c.brush, c.brush_method, c.brush_spread, f.smooth };
+}
+
+void ContactEstimator::walkBrushCovariance(const EstimatorInput& in, ContactEstimateData& o)
+{
+  Eigen::Matrix3d response;
+  long work = 0;
+  if (!brush_->adhesionResponse(response, work))
+  {
+    o.covariance.brush.setZero();
+    o.covariance.brush_method = CovarianceMethod::None;
+    o.covariance.brush_spread = 0.0;
+    o.covariance.status = CovarianceStatus::Undefined;  // no state that integrates the noise (linear, steady)
+    walk_.lose();
+    return;
+  }
+  o.work += work;
+  const BrushParameters& p = brush_->parameters();
+  const double limit = p.mu * p.F_z;
+  const Eigen::Matrix<double, 3, 5> G = driveJacobian(settings_.rolling_radius, heading_);
+  const Eigen::Matrix<double, 5, 5> S = usedTwistCovariance(in.twist_covariance);
+  if (o.brush.sliding_fraction > StandstillCovariance::kSlidingShare)
+  {
+    // Spinning in place most bristles slide, and a sliding bristle forgets the noise it integrated: a walk would
+    // overstate the forces' spread (2-8 times in test_uncertainty). No covariance here; a walk that goes on after it is
+    // only approximate.
+    o.covariance.brush.setZero();
+    o.covariance.brush_method = CovarianceMethod::None;
+    o.covariance.brush_spread = 0.0;
+    o.covariance.status = CovarianceStatus::Undefined;
+    walk_.degrade();
+    return;
+  }
+  walk_.advance(response, G * S * G.transpose(), o.dt, Eigen::Vector3d(limit, limit, limit * p.a));
+  publishWalk(o);
+}
+
+void ContactEstimator::publishWalk(ContactEstimateData& o) const
+{
+  EstimateCovariance& c = o.covariance;
+  c.brush = walk_.covariance();
+  c.brush_method = CovarianceMethod::RandomWalk;
+  ForceCovariance f;
+  f.covariance = c.brush;
+  c.brush_spread = f.spread(brush_->parameters());
+  c.status = walk_.approximate() ? CovarianceStatus::Approximate : CovarianceStatus::Ok;
 }
 
 void ContactEstimator::propagateRollingResistanceCovariance(double speed, ContactEstimateData& o) const

@@ -86,6 +86,13 @@ public:
   /// paper frame. Models without a bristle field (linear), and every model at standstill without state, visit none.
   using BristleVisitor = std::function<void(const Eigen::Vector2d& x, const Eigen::Vector2d& u, bool sliding)>;
   virtual void visitBristles(const BristleVisitor& /*visit*/) const {}
+  /// How the bristle state integrates the drive while the patch does not roll (eq. 1 at V_r = 0: an adhering bristle's
+  /// u' = w = -V_s - A_omega_z x, a sliding one stays on its bound): d(F_x, F_y, M_z)/dt per unit of (V_s,x, V_s,y,
+  /// omega_z), paper frame, summed over the adhering bristles with the weights of the force sums; `work` what that pass
+  /// costs (BrushForces::work units). An input error of one message stays in the state, so at standstill the forces'
+  /// covariance integrates the inputs' (StandstillCovariance). False where there is no such state (linear, steady:
+  /// zero forces at standstill).
+  virtual bool adhesionResponse(Eigen::Matrix3d& /*response*/, long& /*work*/) const { return false; }
 
   const BrushParameters& parameters() const { return p_; }
 

@@ -15,6 +15,7 @@
 #include "sphere_contact_estimator/core/brush/brush_model.h"
 #include "sphere_contact_estimator/core/estimator/estimate_covariance.h"
 #include "sphere_contact_estimator/core/estimator/estimator_settings.h"
+#include "sphere_contact_estimator/core/estimator/standstill_covariance.h"
 #include "sphere_contact_estimator/core/estimator/twist_covariance.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_model.h"
 
@@ -187,6 +188,10 @@ private:
   void runRollingResistance(double speed, ContactEstimateData& out) const;
   void propagateBrushCovariance(const EstimatorInput& in, double speed, ContactEstimateData& out);
   bool reuseBrushCovariance(const Eigen::Matrix<double, 5, 5>& S, const ContactEstimateData& out) const;
+  // at standstill: the covariance the bristles' state integrates (StandstillCovariance), this message's share after
+  // the model advanced the state; publishWalk puts the walk so far into out
+  void walkBrushCovariance(const EstimatorInput& in, ContactEstimateData& out);
+  void publishWalk(ContactEstimateData& out) const;
   void propagateRollingResistanceCovariance(double speed, ContactEstimateData& out) const;
   bool slipsRepresentable(const EstimatorInput& in, const Eigen::Vector2d& V_r, double speed) const;
   void rebuildBrush(const EstimatorSettings& next);
@@ -219,6 +224,8 @@ private:
     double spread = 0.0;
     bool smooth = true;
   } held_covariance_;
+  // the brush covariance while the slips are undefined, from the last one while they were
+  StandstillCovariance walk_;
 };
 
 }  // namespace sphere_contact_estimator

@@ -17,6 +17,7 @@ enum class CovarianceMethod : std::uint8_t
   Zero = 1,       ///< the inputs are exact: the outputs' covariance is exactly zero
   Jacobian = 2,   ///< linearised: J Sigma J^T with the model's exact Jacobian
   Unscented = 3,  ///< the unscented transform (unscented_transform.h) through the model
+  RandomWalk = 4,  ///< each message's input noise integrated by the model's state (StandstillCovariance)
 };
 
 inline const char* toString(CovarianceMethod method)
@@ -31,6 +32,8 @@ inline const char* toString(CovarianceMethod method)
       return "jacobian";
     case CovarianceMethod::Unscented:
       return "unscented";
+    case CovarianceMethod::RandomWalk:
+      return "random_walk";
   }
   return "?";
 }

@@ -1,0 +1,54 @@
+#include "sphere_contact_estimator/core/estimator/standstill_covariance.h"
+
+// STL
+#include <cmath>
+
+namespace sphere_contact_estimator
+{
+Eigen::Matrix<double, 3, 5> driveJacobian(double R_r, double heading)
+{
+  // ground frame: V_s = (V_Cx - R_r omega_y, V_Cy + R_r omega_x); then turned by -heading into the contact frame
+  Eigen::Matrix<double, 2, 5> ground = Eigen::Matrix<double, 2, 5>::Zero();
+  ground(0, 0) = 1.0;
+  ground(0, 3) = -R_r;
+  ground(1, 1) = 1.0;
+  ground(1, 2) = R_r;
+  const double c = std::cos(heading), s = std::sin(heading);
+  Eigen::Matrix<double, 3, 5> J = Eigen::Matrix<double, 3, 5>::Zero();
+  J.row(0) = c * ground.row(0) + s * ground.row(1);
+  J.row(1) = -s * ground.row(0) + c * ground.row(1);
+  J(2, 4) = 1.0;  // omega_z: the same about the ground's z and the contact frame's
+  return J;
+}
+
+void StandstillCovariance::restart(const Eigen::Matrix3d& start, bool approximate)
+{
+  sigma_ = start;
+  known_ = true;
+  approximate_ = approximate;
+}
+
+void StandstillCovariance::advance(const Eigen::Matrix3d& response, const Eigen::Matrix3d& drive, double dt,
+                                   const Eigen::Vector3d& limits)
+{
+  if (!known_ || !(dt > 0.0))
+    return;
+  // paper (x, y, z) = ROS (x, -y, -z), for the forces and the drive alike
+  const Eigen::Matrix3d D = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+  const Eigen::Matrix3d J = dt * (D * response * D);
+  sigma_ += J * drive * J.transpose();
+  sigma_ = 0.5 * (sigma_ + sigma_.transpose());
+  for (int i = 0; i < 3; ++i)
+  {
+    const double limit2 = limits(i) * limits(i);
+    if (sigma_(i, i) > limit2)
+    {
+      const double scale = std::sqrt(limit2 / sigma_(i, i));
+      sigma_.row(i) *= scale;
+      sigma_.col(i) *= scale;
+      approximate_ = true;
+    }
+  }
+}
+
+}  // namespace sphere_contact_estimator
