@@ -705,6 +705,77 @@ TEST(EstimateCovariance, StandstillRandomWalkAgainstMonteCarlo)
   }
 }
 
+TEST(EstimateCovariance, StandstillWalkGrowsIsHeldByFrictionAndIsLostWithItsNoise)
+{
+  EstimatorSettings settings;  // auto, the defaults
+  Eigen::Matrix<double, 6, 1> sd;
+  sd << 0.004, 0.004, 0.0, 0.03, 0.03, 0.05;
+  const TwistCovariance twist = sd.cwiseAbs2().asDiagonal();
+  std::mt19937_64 rng(17);
+  std::normal_distribution<double> g(0.0, 1.0);
+  double t = 0.0;
+  const auto parked = [&](ContactEstimator& e, double scale, CovarianceStatus status = CovarianceStatus::Ok) {
+    EstimatorInput in;
+    in.stamp = t += 0.01;
+    in.v_contact = Eigen::Vector3d(scale * sd(0) * g(rng), scale * sd(1) * g(rng), 0.0);
+    in.omega = Eigen::Vector3d(scale * sd(3) * g(rng), scale * sd(4) * g(rng), scale * sd(5) * g(rng));
+    in.twist_covariance = scale * scale * twist;
+    in.twist_covariance_status = status;
+    const ContactEstimateData* d = e.update(in);
+    EXPECT_NE(d, nullptr);
+    return *d;
+  };
+  ContactEstimator e(settings);
+  // grows message by message from the model's own start: a walk
+  double last = 0.0;
+  for (int k = 0; k < 20; ++k)
+  {
+    const ContactEstimateData d = parked(e, 1.0);
+    ASSERT_EQ(d.covariance.status, CovarianceStatus::Ok) << k;
+    ASSERT_EQ(d.covariance.brush_method, CovarianceMethod::RandomWalk) << k;
+    if (k > 0)
+    {
+      EXPECT_GT(d.covariance.brush_spread, last) << k;
+    }
+    last = d.covariance.brush_spread;
+  }
+  // a message whose noise is unknown: lost until the slips are defined again (or a reset)
+  EXPECT_EQ(parked(e, 1.0, CovarianceStatus::Unknown).covariance.status, CovarianceStatus::Unknown);
+  for (int k = 0; k < 3; ++k)
+  {
+    const ContactEstimateData d = parked(e, 1.0);
+    EXPECT_EQ(d.covariance.status, CovarianceStatus::Undefined) << k;
+    EXPECT_EQ(d.covariance.brush_method, CovarianceMethod::None) << k;
+  }
+  // a reset: the model's own start, walked afresh
+  e.reset();
+  const ContactEstimateData fresh = parked(e, 1.0);
+  EXPECT_EQ(fresh.covariance.status, CovarianceStatus::Ok);
+  EXPECT_LT(fresh.covariance.brush_spread, last);
+  // switched off and on again while parked: the messages between were not walked
+  EstimatorSettings off = settings;
+  off.propagate_covariance = false;
+  e.configure(off);
+  EXPECT_EQ(parked(e, 1.0).covariance.status, CovarianceStatus::Disabled);
+  e.configure(settings);
+  EXPECT_EQ(parked(e, 1.0).covariance.status, CovarianceStatus::Undefined);
+  // a noise a hundred times the demo's: held at the friction limit, only approximate, still a covariance
+  ContactEstimator loud(settings);
+  const double limit = settings.friction * settings.verticalLoad();
+  ContactEstimateData d;
+  for (int k = 0; k < 30; ++k)
+    d = parked(loud, 100.0);
+  EXPECT_EQ(d.covariance.status, CovarianceStatus::Approximate);
+  EXPECT_LE(d.covariance.brush(0, 0), limit * limit * (1.0 + 1e-12));
+  EXPECT_LE(d.covariance.brush(1, 1), limit * limit * (1.0 + 1e-12));
+  EXPECT_EQ(covarianceProblem<3>(d.covariance.brush), nullptr);
+  // the steady model answers zero at standstill: nothing to walk
+  EstimatorSettings steady = settings;
+  steady.brush_model = BrushModelKind::Steady;
+  ContactEstimator s(steady);
+  EXPECT_EQ(parked(s, 1.0).covariance.status, CovarianceStatus::Undefined);
+}
+
 TEST(AutoBelowTheNoise, TargetFollowsTheSpreadAndTheErrorStaysWithinIt)
 {
   // With noisy odometry the forces' own spread s may exceed the accuracy target: auto then answers to f s

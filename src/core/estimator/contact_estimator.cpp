@@ -409,6 +409,7 @@ void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double
   if (!settings_.propagate_covariance)
   {
     c.status = CovarianceStatus::Disabled;
+    walk_.lose();  // (switched on again while parked: the noise of the messages between was not walked)
     return;
   }
   c.status = in.twist_covariance_status;
@@ -502,14 +503,27 @@ void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double
 
 void ContactEstimator::walkBrushCovariance(const EstimatorInput& in, ContactEstimateData& o)
 {
+  EstimateCovariance& c = o.covariance;
+  const auto undefined = [&c] {
+    c.brush.setZero();
+    c.brush_method = CovarianceMethod::None;
+    c.brush_spread = 0.0;
+    c.status = CovarianceStatus::Undefined;
+  };
+  // Spinning in place most bristles slide, and a sliding bristle forgets the noise it integrated: a walk would
+  // overstate the forces' spread (2-8 times in test_uncertainty). No covariance here; a walk that goes on after it is
+  // only approximate.
+  if (o.brush.sliding_fraction > StandstillCovariance::kSlidingShare)
+  {
+    undefined();
+    walk_.degrade();
+    return;
+  }
   Eigen::Matrix3d response;
   long work = 0;
   if (!brush_->adhesionResponse(response, work))
   {
-    o.covariance.brush.setZero();
-    o.covariance.brush_method = CovarianceMethod::None;
-    o.covariance.brush_spread = 0.0;
-    o.covariance.status = CovarianceStatus::Undefined;  // no state that integrates the noise (linear, steady)
+    undefined();  // no state that integrates the noise (linear, steady)
     walk_.lose();
     return;
   }
@@ -518,18 +532,6 @@ void ContactEstimator::walkBrushCovariance(const EstimatorInput& in, ContactEsti
   const double limit = p.mu * p.F_z;
   const Eigen::Matrix<double, 3, 5> G = driveJacobian(settings_.rolling_radius, heading_);
   const Eigen::Matrix<double, 5, 5> S = usedTwistCovariance(in.twist_covariance);
-  if (o.brush.sliding_fraction > StandstillCovariance::kSlidingShare)
-  {
-    // Spinning in place most bristles slide, and a sliding bristle forgets the noise it integrated: a walk would
-    // overstate the forces' spread (2-8 times in test_uncertainty). No covariance here; a walk that goes on after it is
-    // only approximate.
-    o.covariance.brush.setZero();
-    o.covariance.brush_method = CovarianceMethod::None;
-    o.covariance.brush_spread = 0.0;
-    o.covariance.status = CovarianceStatus::Undefined;
-    walk_.degrade();
-    return;
-  }
   walk_.advance(response, G * S * G.transpose(), o.dt, Eigen::Vector3d(limit, limit, limit * p.a));
   publishWalk(o);
 }
