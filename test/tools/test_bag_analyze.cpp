@@ -418,19 +418,42 @@ TEST_F(BagAnalyze, ParkedRobotsForcesFollowTheNoise)
     {
       sce::BagAnalysisResult analysed;
       const std::vector<sce::ContactEstimate> e = estimatesOf(r.bag, r.robot_mass, law, r.start, &analysed);
-      // why its answers miss the target: at standstill, where auto's lattice cannot refine (not the budget)
+      // why an answer misses its target: at standstill, where auto's lattice cannot refine (not the budget); the
+      // forces' covariance walks with the noise while parked, and auto's target follows it (most are met)
       const sce::RunSummary& s = analysed.summary;
       std::printf("%s, %s: target missed at %llu, at standstill %llu\n", r.bag.c_str(), law,
                   static_cast<unsigned long long>(s.accuracyMissed()),
                   static_cast<unsigned long long>(s.accuracyMissedStandstill()));
-      EXPECT_GT(s.accuracyMissedStandstill(), 0u) << r.bag;
       EXPECT_EQ(s.accuracyMissedStandstill(), s.accuracyMissed()) << r.bag;
       EXPECT_EQ(s.accuracyMissedBudgetLimited(), 0u) << r.bag;
-      EXPECT_NE(s.report().find("of them at standstill at " + std::to_string(s.accuracyMissedStandstill()) +
-                                " (auto refines its lattice only while the patch rolls)"),
-                std::string::npos)
-          << s.report();
+      if (s.accuracyMissed() > 0)
+      {
+        EXPECT_NE(s.report().find("of them at standstill at " + std::to_string(s.accuracyMissedStandstill()) +
+                                  " (auto refines its lattice only while the patch rolls)"),
+                  std::string::npos)
+            << s.report();
+      }
       ASSERT_GT(e.size(), 40u) << r.bag;
+      // the forces' covariance walked from the estimator's own start (within 15 %: test_uncertainty); where the noise
+      // has pushed more than half the bristles onto their bounds (a 3 kg robot at 100 Hz, within a few tenths of a
+      // second) not followed: undefined
+      int walked = 0;
+      for (std::size_t i = 0; i < e.size(); ++i)
+      {
+        const bool walk = e[i].brush_covariance_method == sce::ContactEstimate::COVARIANCE_METHOD_RANDOM_WALK;
+        walked += walk;
+        if (i < 10)
+        {
+          EXPECT_TRUE(walk && e[i].covariance_status == sce::ContactEstimate::COVARIANCE_OK) << r.bag << " " << i;
+        }
+        if (!walk)
+        {
+          EXPECT_EQ(e[i].covariance_status, sce::ContactEstimate::COVARIANCE_UNDEFINED) << r.bag << " " << i;
+          EXPECT_GT(e[i].sliding_fraction, 0.5) << r.bag << " " << i;
+        }
+      }
+      std::printf("%s, %s: the covariance walked at %d\n", r.bag.c_str(), law, walked);
+      EXPECT_GE(walked, 10) << r.bag;
       int jumps = 0, within = 0;
       for (std::size_t i = 0; i < e.size(); ++i)
       {
