@@ -51,6 +51,7 @@
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
 #include "sphere_contact_estimator/core/brush/brush_transient.h"
 #include "sphere_contact_estimator/core/brush/force_covariance.h"
+#include "sphere_contact_estimator/core/estimator/contact_estimator.h"
 #include "sphere_contact_estimator/core/numerics/unscented_transform.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_exact.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_expansion.h"
@@ -1035,10 +1036,133 @@ int robotHistories(unsigned seed, int n, int resolution, int reference)
   return below == 0 ? 0 : 1;
 }
 
+// `model_accuracy --parked-walk SEED N [DRAWS]`: the forces' covariance while parked (StandstillCovariance, a random
+// walk through the adhering bristles) against Monte Carlo, over N random robots of stream_sweep.py's envelope (patch
+// radius 4-50 mm, k 3e7-1e9 N/m^3, mass 1-40 kg, mu 0.3-1.2, any pressure; the rest the defaults, auto) parked from
+// the estimator's own start at 30, 100 or 1000 Hz for half a second (at most 300 messages) with 0.5-2 times the demo's
+// noise, each over DRAWS (300) noise realisations: at a sixth, a half and the end of it, the walked standard deviations
+// (F_x, F_y, M_z) over the realisations' sample ones, where every realisation walked there (not where more than half
+// the bristles slide). The ratios' range and median, and where the extremes are. docs/uncertainty.md's figures: seed 7,
+// N = 60.
+int parkedWalk(unsigned seed, int n, int draws)
+{
+  std::mt19937_64 r(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const auto logUniform = [&](double lo, double hi) { return std::exp(std::log(lo) + u(r) * std::log(hi / lo)); };
+  std::vector<double> ratios;
+  Json lowest = nullptr, highest = nullptr;
+  double lo = INFINITY, hi = -INFINITY;
+  int checks = 0, not_walked = 0;
+  for (int point = 0; point < n; ++point)
+  {
+    sce::EstimatorSettings s;
+    s.patch_radius = logUniform(0.004, 0.05);
+    s.bristle_stiffness = logUniform(3e7, 1e9);
+    s.robot_mass = logUniform(1.0, 40.0);
+    s.friction = 0.3 + 0.9 * u(r);
+    const sce::PressureDistribution pressures[3] = { sce::PressureDistribution::Parabolic,
+                                                     sce::PressureDistribution::Hertzian,
+                                                     sce::PressureDistribution::Uniform };
+    s.pressure = pressures[std::min(2, static_cast<int>(3.0 * u(r)))];
+    const double rates[3] = { 30.0, 100.0, 1000.0 };
+    const double rate = rates[std::min(2, static_cast<int>(3.0 * u(r)))];
+    const double scale = 0.5 + 1.5 * u(r);
+    const int messages = std::min(300, static_cast<int>(0.5 * rate) + 2);
+    Eigen::Matrix<double, 6, 1> sd;
+    sd << 0.005 * scale, 0.005 * scale, 0.0, 0.02 * scale, 0.02 * scale, 0.02 * scale;  // the demo's, scaled
+    const sce::TwistCovariance twist = sd.cwiseAbs2().asDiagonal();
+    const int at[3] = { messages / 6, messages / 2, messages - 1 };
+    std::vector<Eigen::Vector3d> F[3];
+    Eigen::Matrix3d walked[3] = { Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero() };
+    int walks[3] = { 0, 0, 0 };
+    std::mt19937_64 noise(seed * 1000003ULL + point);
+    std::normal_distribution<double> g(0.0, 1.0);
+    for (int d = 0; d < draws; ++d)
+    {
+      sce::ContactEstimator e(s);
+      for (int k = 0; k < messages; ++k)
+      {
+        sce::EstimatorInput in;
+        in.stamp = k / rate;
+        in.v_contact = Eigen::Vector3d(sd(0) * g(noise), sd(1) * g(noise), 0.0);
+        in.omega = Eigen::Vector3d(sd(3) * g(noise), sd(4) * g(noise), sd(5) * g(noise));
+        in.twist_covariance = twist;
+        const sce::ContactEstimateData* o = e.update(in);
+        for (int i = 0; i < 3; ++i)
+          if (o && k == at[i])
+          {
+            F[i].emplace_back(o->brush.F_x, o->brush.F_y, o->brush.M_z);
+            if (o->covariance.brush_method == sce::CovarianceMethod::RandomWalk)
+            {
+              walked[i] += o->covariance.brush / draws;
+              ++walks[i];
+            }
+          }
+      }
+    }
+    for (int i = 0; i < 3; ++i)
+    {
+      ++checks;
+      if (walks[i] < draws || static_cast<int>(F[i].size()) < draws)
+      {
+        ++not_walked;
+        continue;
+      }
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      for (const auto& f : F[i])
+        mean += f / draws;
+      Eigen::Matrix3d mc = Eigen::Matrix3d::Zero();
+      for (const auto& f : F[i])
+        mc += (f - mean) * (f - mean).transpose() / (draws - 1);
+      for (int j = 0; j < 3; ++j)
+      {
+        if (!(mc(j, j) > 0.0))
+          continue;
+        const double q = std::sqrt(walked[i](j, j) / mc(j, j));
+        ratios.push_back(q);
+        const Json where{ { "point", point },
+                          { "message", at[i] },
+                          { "component", j },
+                          { "ratio", q },
+                          { "patch_radius", s.patch_radius },
+                          { "bristle_stiffness", s.bristle_stiffness },
+                          { "robot_mass", s.robot_mass },
+                          { "friction", s.friction },
+                          { "pressure", sce::toString(s.pressure) },
+                          { "rate", rate },
+                          { "noise_scale", scale },
+                          { "spread", s.friction > 0.0 ? std::sqrt(walked[i](j, j)) /
+                                                             (s.friction * s.verticalLoad() * (j == 2 ? s.patch_radius : 1.0))
+                                                       : 0.0 } };
+        if (q < lo)
+          lo = q, lowest = where;
+        if (q > hi)
+          hi = q, highest = where;
+      }
+    }
+    std::cerr << "parked walk: " << point + 1 << " of " << n << "\n";
+  }
+  std::sort(ratios.begin(), ratios.end());
+  std::cout << Json{ { "seed", seed },
+                     { "robots", n },
+                     { "draws", draws },
+                     { "checks", checks },
+                     { "not_walked", not_walked },
+                     { "ratios", ratios.size() },
+                     { "min", lo },
+                     { "median", ratios.empty() ? NAN : ratios[ratios.size() / 2] },
+                     { "max", hi },
+                     { "lowest", lowest },
+                     { "highest", highest } }
+                   .dump(1)
+            << "\n";
+  return 0;
+}
+
 int usage()
 {
   std::cerr << "usage: model_accuracy [N] | --sweep SEED N [--law coulomb|rigid] | --robot-histories SEED N "
-               "[RES [REF]] | --uncertainty\n";
+               "[RES [REF]] | --uncertainty | --parked-walk SEED N [DRAWS]\n";
   return 2;
 }
 
@@ -1057,7 +1181,7 @@ int main(int argc, char** argv)
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h"))
   {
     std::cout << "usage: model_accuracy [N] | --sweep SEED N [--law coulomb|rigid] | --robot-histories SEED N "
-                 "[RES [REF]] | --uncertainty\n"
+                 "[RES [REF]] | --uncertainty | --parked-walk SEED N [DRAWS]\n"
                  "  N: random operating points (default 1000); JSON on stdout, progress on stderr\n";
     return 0;
   }
@@ -1083,6 +1207,16 @@ int main(int argc, char** argv)
       return usage();
     return robotHistories(static_cast<unsigned>(*seed), static_cast<int>(*n), static_cast<int>(*res),
                           static_cast<int>(*ref));
+  }
+  if (!args.empty() && args[0] == "--parked-walk")
+  {
+    if (args.size() < 3 || args.size() > 4)
+      return usage();
+    const std::optional<long> seed = wholeNumber(args[1], 0, 4294967295L), n = wholeNumber(args[2], 1, 100000);
+    const std::optional<long> draws = args.size() > 3 ? wholeNumber(args[3], 10, 100000) : std::optional<long>(300);
+    if (!seed || !n || !draws)
+      return usage();
+    return parkedWalk(static_cast<unsigned>(*seed), static_cast<int>(*n), static_cast<int>(*draws));
   }
   const auto start = Clock::now();
   Json out;

@@ -28,6 +28,8 @@ log "timing (Google Benchmark, 3 repetitions, medians)"
   --benchmark_format=console --benchmark_out_format=json --benchmark_out="$OUT/bench.json" 2>&1 | grep -v WARNING
 log "accuracy on the operating points"
 "$BIN/model_accuracy" > "$OUT/accuracy.json"
+log "the parked robot's random-walk covariance against Monte Carlo over random robots (docs/uncertainty.md; about 10 minutes)"
+"$BIN/model_accuracy" --parked-walk 7 60 > "$OUT/parked_walk.json"
 log "auto along the demo bag against the transient model at resolution 256 (about 3 minutes)"
 /usr/bin/python3 "$REPO/scripts/bag_model_accuracy.py" --bag-analyze "$BIN/bag_analyze" --reference-resolution 256 \
   --before "$REPO/bench/demo_bag_before.json" --noise-fraction 0.25 --out "$OUT/bag.json"

@@ -578,7 +578,8 @@ TEST(EstimateCovariance, StandstillRandomWalkAgainstMonteCarlo)
 {
   // Parked, the slips are undefined and the forces are what the adhering bristles integrated: each message's odometry
   // error stays in the state. The covariance the estimator walks (StandstillCovariance) against the spread of the
-  // forces over independent noise realisations of the same history, at three messages of it.
+  // forces over independent noise realisations of the same history, at three messages of it, at the default robot
+  // (over random robots: model_accuracy --parked-walk).
   struct Case
   {
     const char* name;
@@ -595,8 +596,8 @@ TEST(EstimateCovariance, StandstillRandomWalkAgainstMonteCarlo)
     // (measured: 1.14 and 1.15 at worst, the walk above the spread: the rim's bristles, with little bound, slide)
     { "parked, auto, 1 kHz", BrushModelKind::Auto, 1000.0, 0.0, 0.0, 300, 0.7, 0.2 },
     { "parked, transient, 100 Hz", BrushModelKind::Transient, 100.0, 0.0, 0.0, 12, -2.0, 0.2 },
-    // from a rolled field: approximate (bristles near their bounds slide and forget; measured 0.76 at worst, and the
-    // correlation of F_y and M_z 0.1 against 0.6: not claimed)
+    // from a rolled field (bristles near their bounds slide and forget; measured 0.76 at worst, and the correlation of
+    // F_y and M_z 0.1 against 0.6: not claimed)
     { "parked after a skid, auto, 1 kHz", BrushModelKind::Auto, 1000.0, 0.0, 0.05, 300, 0.0, 0.30 },
     // most bristles slide: not followed
     { "spinning in place, auto, 1 kHz", BrushModelKind::Auto, 1000.0, 4.0, 0.0, 300, 1.2, 0.0 },
@@ -621,7 +622,7 @@ TEST(EstimateCovariance, StandstillRandomWalkAgainstMonteCarlo)
     Eigen::Matrix3d walked[3] = { Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero() };
     std::mt19937_64 rng(4242);
     std::normal_distribution<double> g(0.0, 1.0);
-    int ok = 0, approximate = 0, undefined = 0, walks = 0;
+    int approximate = 0, undefined = 0, walks = 0;
     for (int draw = 0; draw < kDraws; ++draw)
     {
       ContactEstimator e(settings);
@@ -660,7 +661,6 @@ TEST(EstimateCovariance, StandstillRandomWalkAgainstMonteCarlo)
         ++walks;
         ASSERT_EQ(v.brush_method, CovarianceMethod::RandomWalk) << c.name << " " << k;
         EXPECT_EQ(covarianceProblem<3>(v.brush), nullptr);
-        ok += v.status == CovarianceStatus::Ok;
         approximate += v.status == CovarianceStatus::Approximate;
         for (int i = 0; i < 3; ++i)
           if (k == checks[i])
@@ -676,7 +676,7 @@ TEST(EstimateCovariance, StandstillRandomWalkAgainstMonteCarlo)
       continue;
     }
     EXPECT_EQ(undefined, 0) << c.name;
-    EXPECT_EQ(c.skid == 0.0 ? ok : approximate, walks) << c.name;  // Ok only from the model's own start
+    EXPECT_EQ(approximate, walks) << c.name;  // always (StandstillCovariance: what it leaves out)
     double worst = 1.0;
     for (int i = 0; i < 3; ++i)
     {
@@ -710,16 +710,19 @@ TEST(EstimateCovariance, StandstillWalkGrowsIsHeldByFrictionAndIsLostWithItsNois
   EstimatorSettings settings;  // auto, the defaults
   Eigen::Matrix<double, 6, 1> sd;
   sd << 0.004, 0.004, 0.0, 0.03, 0.03, 0.05;
-  const TwistCovariance twist = sd.cwiseAbs2().asDiagonal();
   std::mt19937_64 rng(17);
   std::normal_distribution<double> g(0.0, 1.0);
   double t = 0.0;
   const auto parked = [&](ContactEstimator& e, double scale, CovarianceStatus status = CovarianceStatus::Ok) {
     EstimatorInput in;
     in.stamp = t += 0.01;
-    in.v_contact = Eigen::Vector3d(scale * sd(0) * g(rng), scale * sd(1) * g(rng), 0.0);
-    in.omega = Eigen::Vector3d(scale * sd(3) * g(rng), scale * sd(4) * g(rng), scale * sd(5) * g(rng));
-    in.twist_covariance = scale * scale * twist;
+    // (scaled on V_C and omega_z: the rolling speed's noise stays below the standstill speed)
+    Eigen::Matrix<double, 6, 1> scaled = sd;
+    for (int i : { 0, 1, 5 })
+      scaled(i) *= scale;
+    in.v_contact = Eigen::Vector3d(scaled(0) * g(rng), scaled(1) * g(rng), 0.0);
+    in.omega = Eigen::Vector3d(scaled(3) * g(rng), scaled(4) * g(rng), scaled(5) * g(rng));
+    in.twist_covariance = scaled.cwiseAbs2().asDiagonal();
     in.twist_covariance_status = status;
     const ContactEstimateData* d = e.update(in);
     EXPECT_NE(d, nullptr);
@@ -731,7 +734,7 @@ TEST(EstimateCovariance, StandstillWalkGrowsIsHeldByFrictionAndIsLostWithItsNois
   for (int k = 0; k < 20; ++k)
   {
     const ContactEstimateData d = parked(e, 1.0);
-    ASSERT_EQ(d.covariance.status, CovarianceStatus::Ok) << k;
+    ASSERT_EQ(d.covariance.status, CovarianceStatus::Approximate) << k;
     ASSERT_EQ(d.covariance.brush_method, CovarianceMethod::RandomWalk) << k;
     if (k > 0)
     {
@@ -750,7 +753,7 @@ TEST(EstimateCovariance, StandstillWalkGrowsIsHeldByFrictionAndIsLostWithItsNois
   // a reset: the model's own start, walked afresh
   e.reset();
   const ContactEstimateData fresh = parked(e, 1.0);
-  EXPECT_EQ(fresh.covariance.status, CovarianceStatus::Ok);
+  EXPECT_EQ(fresh.covariance.brush_method, CovarianceMethod::RandomWalk);
   EXPECT_LT(fresh.covariance.brush_spread, last);
   // switched off and on again while parked: the messages between were not walked
   EstimatorSettings off = settings;
@@ -759,16 +762,21 @@ TEST(EstimateCovariance, StandstillWalkGrowsIsHeldByFrictionAndIsLostWithItsNois
   EXPECT_EQ(parked(e, 1.0).covariance.status, CovarianceStatus::Disabled);
   e.configure(settings);
   EXPECT_EQ(parked(e, 1.0).covariance.status, CovarianceStatus::Undefined);
-  // a noise a hundred times the demo's: held at the friction limit, only approximate, still a covariance
+  // a noise a hundred times the demo's: held at the friction limit, still a covariance
   ContactEstimator loud(settings);
   const double limit = settings.friction * settings.verticalLoad();
-  ContactEstimateData d;
+  double largest = 0.0;
   for (int k = 0; k < 30; ++k)
-    d = parked(loud, 100.0);
-  EXPECT_EQ(d.covariance.status, CovarianceStatus::Approximate);
-  EXPECT_LE(d.covariance.brush(0, 0), limit * limit * (1.0 + 1e-12));
-  EXPECT_LE(d.covariance.brush(1, 1), limit * limit * (1.0 + 1e-12));
-  EXPECT_EQ(covarianceProblem<3>(d.covariance.brush), nullptr);
+  {
+    const ContactEstimateData d = parked(loud, 100.0);
+    if (d.covariance.brush_method != CovarianceMethod::RandomWalk)
+      continue;  // (where the noise has pushed most bristles onto their bounds: not followed)
+    largest = std::max({ largest, d.covariance.brush(0, 0), d.covariance.brush(1, 1) });
+    EXPECT_LE(d.covariance.brush(0, 0), limit * limit * (1.0 + 1e-12)) << k;
+    EXPECT_LE(d.covariance.brush(1, 1), limit * limit * (1.0 + 1e-12)) << k;
+    EXPECT_EQ(covarianceProblem<3>(d.covariance.brush), nullptr) << k;
+  }
+  EXPECT_NEAR(largest, limit * limit, 1e-9 * limit * limit);  // reached, and held
   // the steady model answers zero at standstill: nothing to walk
   EstimatorSettings steady = settings;
   steady.brush_model = BrushModelKind::Steady;

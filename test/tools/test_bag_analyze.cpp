@@ -434,7 +434,7 @@ TEST_F(BagAnalyze, ParkedRobotsForcesFollowTheNoise)
             << s.report();
       }
       ASSERT_GT(e.size(), 40u) << r.bag;
-      // the forces' covariance walked from the estimator's own start (within 15 %: test_uncertainty); where the noise
+      // the forces' covariance walked from the estimator's own start (approximate: test_uncertainty); where the noise
       // has pushed more than half the bristles onto their bounds (a 3 kg robot at 100 Hz, within a few tenths of a
       // second) not followed: undefined
       int walked = 0;
@@ -444,7 +444,7 @@ TEST_F(BagAnalyze, ParkedRobotsForcesFollowTheNoise)
         walked += walk;
         if (i < 10)
         {
-          EXPECT_TRUE(walk && e[i].covariance_status == sce::ContactEstimate::COVARIANCE_OK) << r.bag << " " << i;
+          EXPECT_TRUE(walk && e[i].covariance_status == sce::ContactEstimate::COVARIANCE_APPROXIMATE) << r.bag << " " << i;
         }
         if (!walk)
         {

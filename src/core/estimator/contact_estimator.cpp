@@ -108,7 +108,7 @@ void ContactEstimator::reset()
   turn_rate_ = 0.0;
   not_rolling_time_ = 0.0;
   held_covariance_.valid = false;
-  walk_.restart(Eigen::Matrix3d::Zero(), false);  // the model's own start
+  walk_.restart(Eigen::Matrix3d::Zero());  // the model's own start
   if (brush_)
     brush_->reset();
 }
@@ -174,7 +174,7 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
     o.brush.flags = brush_flags::kModelFault;
     if (brush_)
       brush_->reset();
-    walk_.restart(Eigen::Matrix3d::Zero(), false);
+    walk_.restart(Eigen::Matrix3d::Zero());
   }
   try
   {
@@ -220,7 +220,7 @@ double ContactEstimator::advanceClock(double stamp, std::uint32_t& flags)
     {
       if (brush_)
         brush_->reset();
-      walk_.restart(Eigen::Matrix3d::Zero(), false);
+      walk_.restart(Eigen::Matrix3d::Zero());
       turn_rate_ = 0.0;
       was_rolling_ = false;
       flags |= estimate_flags::kGapReset;
@@ -452,7 +452,7 @@ void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double
     c.brush_age = o.stamp - h.stamp;
     if (near_standstill || !h.smooth)
       c.status = CovarianceStatus::Approximate;
-    walk_.restart(c.brush, true);  // (a rolled field: StandstillCovariance)
+    walk_.restart(c.brush);
     return;
   }
   held_covariance_.valid = false;
@@ -497,7 +497,7 @@ void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double
   // where the forces kink or jump over the spread, the transform's moments are only approximate
   if (near_standstill || !f.smooth)
     c.status = CovarianceStatus::Approximate;
-  walk_.restart(c.brush, true);  // (a rolled field: StandstillCovariance)
+  walk_.restart(c.brush);
   held_covariance_ = HeldCovariance{ true, o.stamp, S, p, c.brush, c.brush_method, c.brush_spread, f.smooth };
 }
 
@@ -511,12 +511,10 @@ void ContactEstimator::walkBrushCovariance(const EstimatorInput& in, ContactEsti
     c.status = CovarianceStatus::Undefined;
   };
   // Spinning in place most bristles slide, and a sliding bristle forgets the noise it integrated: a walk would
-  // overstate the forces' spread (2-8 times in test_uncertainty). No covariance here; a walk that goes on after it is
-  // only approximate.
+  // overstate the forces' spread (2-8 times in test_uncertainty). No covariance here.
   if (o.brush.sliding_fraction > StandstillCovariance::kSlidingShare)
   {
     undefined();
-    walk_.degrade();
     return;
   }
   Eigen::Matrix3d response;
@@ -544,7 +542,7 @@ void ContactEstimator::publishWalk(ContactEstimateData& o) const
   ForceCovariance f;
   f.covariance = c.brush;
   c.brush_spread = f.spread(brush_->parameters());
-  c.status = walk_.approximate() ? CovarianceStatus::Approximate : CovarianceStatus::Ok;
+  c.status = CovarianceStatus::Approximate;  // (StandstillCovariance: what it leaves out)
 }
 
 void ContactEstimator::propagateRollingResistanceCovariance(double speed, ContactEstimateData& o) const

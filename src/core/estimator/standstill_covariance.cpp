@@ -21,11 +21,10 @@ Eigen::Matrix<double, 3, 5> driveJacobian(double R_r, double heading)
   return J;
 }
 
-void StandstillCovariance::restart(const Eigen::Matrix3d& start, bool approximate)
+void StandstillCovariance::restart(const Eigen::Matrix3d& start)
 {
   sigma_ = start;
   known_ = true;
-  approximate_ = approximate;
 }
 
 void StandstillCovariance::advance(const Eigen::Matrix3d& response, const Eigen::Matrix3d& drive, double dt,
@@ -46,7 +45,6 @@ void StandstillCovariance::advance(const Eigen::Matrix3d& response, const Eigen:
       const double scale = std::sqrt(limit2 / sigma_(i, i));
       sigma_.row(i) *= scale;
       sigma_.col(i) *= scale;
-      approximate_ = true;
     }
   }
 }

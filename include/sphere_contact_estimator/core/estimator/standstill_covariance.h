@@ -17,27 +17,26 @@ Eigen::Matrix<double, 3, 5> driveJacobian(double R_r, double heading);
 /// (V_s, omega_z) moves the forces by dt R times it (R = BrushModel::adhesionResponse) and stays in the state. With the
 /// odometry's errors independent from message to message (what a twist covariance per message says), the forces
 /// walk at random: Sigma_F += (dt R) Sigma_w (dt R)^T per message, Sigma_w the drive's covariance (driveJacobian). The
-/// walk starts from zero where the state is the model's own start (a new or reset estimator: within 15 % of Monte
-/// Carlo over noise realisations, test_uncertainty, though up to a third of the bristles slide at times), or from the
-/// covariance the forces had when the slips were last defined: only approximate, as the steady model's sensitivity near
-/// standstill is, and because the field rolling left behind has bristles near their bounds that slide as the noise
-/// walks them and forget what they integrated (within 30 % after a skid). Where most bristles slide (spinning in
-/// place, kSlidingShare) it overstates the spread 2-8 times: not followed there. No standard deviation passes what the
-/// friction limit allows (|F| <= mu F_z, |M_z| <= mu F_z a): a component that reaches it is held there (its row and
-/// column scaled, which keeps the matrix a covariance) and the walk is then only approximate. All in the ROS contact
-/// frame.
+/// walk starts from zero where the state is the model's own start (a new or reset estimator) or from the covariance the
+/// forces had when the slips were last defined. It is always only approximate (COVARIANCE_APPROXIMATE): it leaves out
+/// the rolling the noise in omega_x, omega_y gives the lattice (which moves the deflection at the rim: the uniform
+/// pressure's bristles hold one there), and the bristles that the noise pushes onto their bounds and that forget what
+/// they integrated. Its standard deviations against Monte Carlo over noise realisations: within 15 % at the default
+/// robot (test_uncertainty), 0.43-1.29 times over random robots of the envelope (model_accuracy --parked-walk;
+/// docs/uncertainty.md); from a field rolling left behind within 30 % after a skid. Where most bristles slide (spinning
+/// in place, kSlidingShare) it overstated the spread 2-8 times: not followed there (the estimator answers without a
+/// covariance and the walk resumes after). No standard deviation passes what the friction limit allows (|F| <= mu F_z,
+/// |M_z| <= mu F_z a): a component that reaches it is held there (its row and column scaled, which keeps the matrix a
+/// covariance). All in the ROS contact frame.
 class StandstillCovariance
 {
 public:
-  /// From a known covariance (approximate: only approximately known).
-  void restart(const Eigen::Matrix3d& start, bool approximate);
+  /// From a known covariance.
+  void restart(const Eigen::Matrix3d& start);
   /// Unknown from here (a message without a usable covariance, a retune of the model) until restart.
   void lose() { known_ = false; }
   bool known() const { return known_; }
-  /// Still known, but only approximately from here (the state moved in a way the walk does not follow).
-  void degrade() { approximate_ = true; }
-  /// Beyond this share of the bristles sliding (spinning in place) the walk is not followed: the estimator says the
-  /// covariance is undefined there, and degrades the walk.
+  /// Beyond this share of the bristles sliding (spinning in place) the walk is not followed.
   static constexpr double kSlidingShare = 0.5;
 
   /// One message of dt [s]: response the model's adhesionResponse (paper frame), drive the covariance of
@@ -46,12 +45,10 @@ public:
                const Eigen::Vector3d& limits);
 
   const Eigen::Matrix3d& covariance() const { return sigma_; }
-  bool approximate() const { return approximate_; }
 
 private:
   Eigen::Matrix3d sigma_ = Eigen::Matrix3d::Zero();
   bool known_ = true;  // a new estimator's model starts from its own state
-  bool approximate_ = false;
 };
 
 }  // namespace sphere_contact_estimator
