@@ -5,22 +5,6 @@
 
 namespace sphere_contact_estimator
 {
-Eigen::Matrix<double, 3, 5> driveJacobian(double R_r, double heading)
-{
-  // ground frame: V_s = (V_Cx - R_r omega_y, V_Cy + R_r omega_x); then turned by -heading into the contact frame
-  Eigen::Matrix<double, 2, 5> ground = Eigen::Matrix<double, 2, 5>::Zero();
-  ground(0, 0) = 1.0;
-  ground(0, 3) = -R_r;
-  ground(1, 1) = 1.0;
-  ground(1, 2) = R_r;
-  const double c = std::cos(heading), s = std::sin(heading);
-  Eigen::Matrix<double, 3, 5> J = Eigen::Matrix<double, 3, 5>::Zero();
-  J.row(0) = c * ground.row(0) + s * ground.row(1);
-  J.row(1) = -s * ground.row(0) + c * ground.row(1);
-  J(2, 4) = 1.0;  // omega_z: the same about the ground's z and the contact frame's
-  return J;
-}
-
 void StandstillCovariance::restart(const Eigen::Matrix3d& start)
 {
   sigma_ = start;

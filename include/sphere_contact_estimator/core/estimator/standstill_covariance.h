@@ -5,18 +5,13 @@
 
 namespace sphere_contact_estimator
 {
-/// d(V_s,x, V_s,y, omega_z) / d(V_Cx, V_Cy, omega_x, omega_y, omega_z): the bristles' drive inputs (eq. 2, V_s = V_C -
-/// V_r with V_r = R_r (omega_y, -omega_x)) in the contact frame at `heading`, ROS axes, against the twist in the
-/// ground frame. Linear: it holds at any speed, standstill included.
-Eigen::Matrix<double, 3, 5> driveJacobian(double R_r, double heading);
-
 /// The forces' covariance while the slips are undefined (a parked robot), where the unscented transform through the
 /// steady model has no slips to work on.
 ///
 /// There the adhering bristles integrate the drive (eq. 1 without rolling, u' = w): an error in one message's
 /// (V_s, omega_z) moves the forces by dt R times it (R = BrushModel::adhesionResponse) and stays in the state. With the
 /// odometry's errors independent from message to message (what a twist covariance per message says), the forces
-/// walk at random: Sigma_F += (dt R) Sigma_w (dt R)^T per message, Sigma_w the drive's covariance (driveJacobian). The
+/// walk at random: Sigma_F += (dt R) Sigma_w (dt R)^T per message, Sigma_w the drive's covariance (driveJacobian, estimate_covariance.h). The
 /// walk starts from zero where the state is the model's own start (a new or reset estimator) or from the covariance the
 /// forces had when the slips were last defined. It is always only approximate (COVARIANCE_APPROXIMATE): it leaves out
 /// the rolling the noise in omega_x, omega_y gives the lattice (which moves the deflection at the rim: the uniform
