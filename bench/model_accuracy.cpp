@@ -1036,15 +1036,17 @@ int robotHistories(unsigned seed, int n, int resolution, int reference)
   return below == 0 ? 0 : 1;
 }
 
-// `model_accuracy --parked-walk SEED N [DRAWS]`: the forces' covariance while parked (StandstillCovariance, a random
+// `model_accuracy --parked-walk SEED N [DRAWS] [--without-roll-noise]`: the forces' covariance while parked
+// (StandstillCovariance, a random
 // walk through the adhering bristles) against Monte Carlo, over N random robots of stream_sweep.py's envelope (patch
 // radius 4-50 mm, k 3e7-1e9 N/m^3, mass 1-40 kg, mu 0.3-1.2, any pressure; the rest the defaults, auto) parked from
 // the estimator's own start at 30, 100 or 1000 Hz for half a second (at most 300 messages) with 0.5-2 times the demo's
 // noise, each over DRAWS (300) noise realisations: at a sixth, a half and the end of it, the walked standard deviations
 // (F_x, F_y, M_z) over the realisations' sample ones, where every realisation walked there (not where more than half
-// the bristles slide). The ratios' range and median, and where the extremes are. docs/uncertainty.md's figures: seed 7,
-// N = 60.
-int parkedWalk(unsigned seed, int n, int draws)
+// the bristles slide). The ratios' range, median and 5th and 95th percentiles, and where the extremes are.
+// --without-roll-noise: no noise in omega_x, omega_y (the roll of the roots it gives left out, StandstillCovariance).
+// docs/uncertainty.md's figures: seed 7, N = 60.
+int parkedWalk(unsigned seed, int n, int draws, bool roll_noise)
 {
   std::mt19937_64 r(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -1070,6 +1072,8 @@ int parkedWalk(unsigned seed, int n, int draws)
     const int messages = std::min(300, static_cast<int>(0.5 * rate) + 2);
     Eigen::Matrix<double, 6, 1> sd;
     sd << 0.005 * scale, 0.005 * scale, 0.0, 0.02 * scale, 0.02 * scale, 0.02 * scale;  // the demo's, scaled
+    if (!roll_noise)
+      sd(3) = sd(4) = 0.0;
     const sce::TwistCovariance twist = sd.cwiseAbs2().asDiagonal();
     const int at[3] = { messages / 6, messages / 2, messages - 1 };
     std::vector<Eigen::Vector3d> F[3];
@@ -1143,9 +1147,15 @@ int parkedWalk(unsigned seed, int n, int draws)
     std::cerr << "parked walk: " << point + 1 << " of " << n << "\n";
   }
   std::sort(ratios.begin(), ratios.end());
+  const auto percentile = [&](double q) {
+    return ratios.empty() ? NAN : ratios[std::min(ratios.size() - 1, static_cast<std::size_t>(q * ratios.size()))];
+  };
   std::cout << Json{ { "seed", seed },
                      { "robots", n },
                      { "draws", draws },
+                     { "roll_noise", roll_noise },
+                     { "p05", percentile(0.05) },
+                     { "p95", percentile(0.95) },
                      { "checks", checks },
                      { "not_walked", not_walked },
                      { "ratios", ratios.size() },
@@ -1162,7 +1172,7 @@ int parkedWalk(unsigned seed, int n, int draws)
 int usage()
 {
   std::cerr << "usage: model_accuracy [N] | --sweep SEED N [--law coulomb|rigid] | --robot-histories SEED N "
-               "[RES [REF]] | --uncertainty | --parked-walk SEED N [DRAWS]\n";
+               "[RES [REF]] | --uncertainty | --parked-walk SEED N [DRAWS] [--without-roll-noise]\n";
   return 2;
 }
 
@@ -1181,7 +1191,7 @@ int main(int argc, char** argv)
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h"))
   {
     std::cout << "usage: model_accuracy [N] | --sweep SEED N [--law coulomb|rigid] | --robot-histories SEED N "
-                 "[RES [REF]] | --uncertainty | --parked-walk SEED N [DRAWS]\n"
+                 "[RES [REF]] | --uncertainty | --parked-walk SEED N [DRAWS] [--without-roll-noise]\n"
                  "  N: random operating points (default 1000); JSON on stdout, progress on stderr\n";
     return 0;
   }
@@ -1210,13 +1220,16 @@ int main(int argc, char** argv)
   }
   if (!args.empty() && args[0] == "--parked-walk")
   {
-    if (args.size() < 3 || args.size() > 4)
+    std::vector<std::string> rest(args.begin() + 1, args.end());
+    const bool roll_noise = std::find(rest.begin(), rest.end(), "--without-roll-noise") == rest.end();
+    rest.erase(std::remove(rest.begin(), rest.end(), "--without-roll-noise"), rest.end());
+    if (rest.size() < 2 || rest.size() > 3)
       return usage();
-    const std::optional<long> seed = wholeNumber(args[1], 0, 4294967295L), n = wholeNumber(args[2], 1, 100000);
-    const std::optional<long> draws = args.size() > 3 ? wholeNumber(args[3], 10, 100000) : std::optional<long>(300);
+    const std::optional<long> seed = wholeNumber(rest[0], 0, 4294967295L), n = wholeNumber(rest[1], 1, 100000);
+    const std::optional<long> draws = rest.size() > 2 ? wholeNumber(rest[2], 10, 100000) : std::optional<long>(300);
     if (!seed || !n || !draws)
       return usage();
-    return parkedWalk(static_cast<unsigned>(*seed), static_cast<int>(*n), static_cast<int>(*draws));
+    return parkedWalk(static_cast<unsigned>(*seed), static_cast<int>(*n), static_cast<int>(*draws), roll_noise);
   }
   const auto start = Clock::now();
   Json out;

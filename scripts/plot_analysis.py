@@ -82,6 +82,8 @@ def prepare(d):
             d[k] = np.where(on, d[k], np.nan)
     mu_fz = d["friction"] * d["load"]
     d["mu_fz"] = np.where(mu_fz > 0, mu_fz, np.nan)  # no bound to draw where load or friction are not set
+    # M_z's bound, mu F_z a (older CSVs have no patch radius: none)
+    d["mu_fz_a"] = d["mu_fz"] * d["patch_radius"] if "patch_radius" in d else np.full(d["t"].shape, np.nan)
     for k in OPTIONAL:  # older CSVs have none: no bands
         d.setdefault(k, np.full(d["t"].shape, np.nan))
     # parked: the forces are the bristles' response to the odometry's noise (older CSVs have no such flag)
@@ -141,11 +143,15 @@ def lines(ax, d, specs):
         ax.plot(d["t"], d[key], colour, lw=1, label=label, **marks(d))
 
 
-def band(ax, t, y, sd, colour, label):
-    """+-2 sigma about y where sd is known (the odometry's covariance carried through the model)."""
+def band(ax, t, y, sd, colour, label, limit=None):
+    """+-2 sigma about y where sd is known (the odometry's covariance carried through the model), within +-limit where
+    given: the friction limit, which the forces never pass (a parked robot's walked spread reaches it)."""
     known = np.isfinite(sd) & np.isfinite(y)
     if known.any():
-        ax.fill_between(t, y - 2.0 * sd, y + 2.0 * sd, where=known, color=colour, alpha=0.25, lw=0, label=label)
+        lo, hi = y - 2.0 * sd, y + 2.0 * sd
+        if limit is not None:
+            lo, hi = np.fmax(lo, -limit), np.fmin(hi, limit)  # (no limit where it is not known: NaN)
+        ax.fill_between(t, lo, hi, where=known, color=colour, alpha=0.25, lw=0, label=label)
 
 
 def names(values, table):
@@ -162,9 +168,10 @@ def plot_forces(d, title):
     if on.any():
         lines(ax_f, d, (("brush_fx", "C0", "$F_x$ (along rolling)"), ("brush_fy", "C2", "$F_y$ (left)")))
         lines(ax_m, d, (("brush_mz", "C4", "$M_z$ (about z up)"),))
-        band(ax_f, t, d["brush_fx"], d["brush_fx_std"], "C0", "$\\pm 2\\sigma$ from the odometry")
-        band(ax_f, t, d["brush_fy"], d["brush_fy_std"], "C2", None)
-        band(ax_m, t, d["brush_mz"], d["brush_mz_std"], "C4", "$\\pm 2\\sigma$ from the odometry")
+        label = "$\\pm 2\\sigma$ from the odometry\n(within the friction limit)"
+        band(ax_f, t, d["brush_fx"], d["brush_fx_std"], "C0", label, d["mu_fz"])
+        band(ax_f, t, d["brush_fy"], d["brush_fy_std"], "C2", None, d["mu_fz"])
+        band(ax_m, t, d["brush_mz"], d["brush_mz_std"], "C4", label, d["mu_fz_a"])
     for ax in (ax_f, ax_m):
         shade(ax, t, d["sliding_fraction"] > 0.5, "C3", "mostly sliding\n(sliding fraction > 0.5)")
         shade(ax, t, d["within_noise"], "0.5", "motion within the\nodometry's noise (parked)")

@@ -574,12 +574,75 @@ TEST(EstimateCovariance, NearStandstillWithASmallSpreadAgainstMonteCarlo)
   EXPECT_NEAR(std::sqrt(d->covariance.rolling_resistance_force_variance / mc(3, 3)), 1.0, 0.1);
 }
 
+TEST(StandstillCovariance, TheRollsMomentsAgainstClosedForms)
+{
+  // The roll's share of a message, Var(dt R w + L(d)) with d = -V_r dt, against closed forms for the two kinds of
+  // table the lattice gives: linear in d (the moment arm, e x F) and one-sided (what leaves at the rim).
+  const double dt = 0.01;
+  Eigen::Matrix<double, 5, 5> drive;  // (V_s,x, V_s,y, omega_z, V_r,x, V_r,y), V_s sharing V_r's noise
+  {
+    Eigen::Matrix<double, 5, 5> G = Eigen::Matrix<double, 5, 5>::Identity();
+    G(0, 3) = G(1, 4) = -1.0;  // V_s = V_C - V_r
+    const Eigen::Matrix<double, 5, 1> sd(0.004, 0.003, 0.05, 0.003, 0.002);
+    Eigen::Matrix<double, 5, 5> C = sd.cwiseAbs2().asDiagonal();
+    C(3, 4) = C(4, 3) = 0.3 * sd(3) * sd(4);
+    drive = G * C * G.transpose();
+  }
+  const Eigen::Vector3d limits = Eigen::Vector3d::Constant(1e9);
+  const Eigen::Matrix3d P2R = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();  // paper <-> ROS
+  AdhesionResponse r;
+  r.drive << -2e4, 0.0, 3.0, 0.0, -2e4, -1.0, 3.0, -1.0, -40.0;
+  const Eigen::Matrix3d A = dt * (P2R * r.drive * P2R);
+  // linear: L(e) = M e (paper), so the increment is dt [A_w, -M_ros] (w, V_r): Var exactly G Sigma G^T
+  Eigen::Matrix<double, 3, 2> M;
+  M << 300.0, -200.0, 50.0, 400.0, 2.0, -3.0;
+  for (int j = 0; j < AdhesionResponse::kDirections; ++j)
+    r.roll.col(j) = M * AdhesionResponse::direction(j);
+  Eigen::Matrix<double, 3, 2> M_ros = P2R * M;
+  M_ros.col(1) *= -1.0;  // a displacement's y turns sign too
+  Eigen::Matrix<double, 3, 5> G;
+  G << A, -dt * M_ros;
+  const Eigen::Matrix3d linear = G * drive * G.transpose();
+  StandstillCovariance walk;
+  walk.restart(Eigen::Matrix3d::Zero());
+  walk.advance(r, drive, dt, limits);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      EXPECT_NEAR(walk.covariance()(i, j), linear(i, j), 5e-3 * std::sqrt(linear(i, i) * linear(j, j))) << i << j;
+  // one-sided: L(e) = -c (e . n)+ (paper), nothing else moving: L(d) = -c (d . n)+ with d . n ~ N(0, s^2):
+  // E = -c s / sqrt(2 pi), Var = c^2 s^2 (1/2 - 1/(2 pi)) (measured 1.2 % low: the table's kink, linear between its
+  // 32 directions)
+  const Eigen::Vector2d n(std::cos(0.7), std::sin(0.7));
+  const Eigen::Vector3d c(5.0, -2.0, 0.1);
+  r.drive.setZero();
+  for (int j = 0; j < AdhesionResponse::kDirections; ++j)
+    r.roll.col(j) = -c * std::max(0.0, n.dot(AdhesionResponse::direction(j)));
+  const Eigen::Vector2d n_ros(n.x(), -n.y());
+  const double s2 = dt * dt * n_ros.dot(drive.bottomRightCorner<2, 2>() * n_ros);
+  const Eigen::Vector3d c_ros = P2R * c;
+  const Eigen::Matrix3d one_sided = c_ros * c_ros.transpose() * s2 * (0.5 - 0.5 / M_PI);
+  walk.restart(Eigen::Matrix3d::Zero());
+  walk.advance(r, drive, dt, limits);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      EXPECT_NEAR(walk.covariance()(i, j), one_sided(i, j), 2e-2 * std::sqrt(one_sided(i, i) * one_sided(j, j)))
+          << i << j;
+  // without roll noise the roll has no share
+  Eigen::Matrix<double, 5, 5> still = drive;
+  still.bottomRows<2>().setZero();
+  still.rightCols<2>().setZero();
+  walk.restart(Eigen::Matrix3d::Zero());
+  walk.advance(r, still, dt, limits);
+  EXPECT_EQ(walk.covariance(), Eigen::Matrix3d::Zero());
+}
+
 TEST(EstimateCovariance, StandstillRandomWalkAgainstMonteCarlo)
 {
   // Parked, the slips are undefined and the forces are what the adhering bristles integrated: each message's odometry
-  // error stays in the state. The covariance the estimator walks (StandstillCovariance) against the spread of the
-  // forces over independent noise realisations of the same history, at three messages of it, at the default robot
-  // (over random robots: model_accuracy --parked-walk).
+  // error stays in the state, and the noise in omega_x, omega_y rolls the roots under it. The covariance the estimator
+  // walks (StandstillCovariance) against the spread of the forces over independent noise realisations of the same
+  // history, at three messages of it, at the default robot and at the envelope's robot where the walk without the
+  // roll was furthest off (over random robots: model_accuracy --parked-walk).
   struct Case
   {
     const char* name;
@@ -591,31 +654,54 @@ TEST(EstimateCovariance, StandstillRandomWalkAgainstMonteCarlo)
     double body_heading;  // [rad]
     double tolerance;     // on the ratio of the standard deviations (400 draws: sampling error about 3.5 %), and from
                           // a model's own start on the correlations
+    bool uniform_robot = false;  // model_accuracy --parked-walk 7 60's robot 39: a = 5.6 mm, k 2.3e8, 7.8 kg, mu
+                                 // 0.68, the uniform pressure (its rim holds deflection: the roll's loss there), and
+                                 // its noise: independent, 1.2 times the demo's
   };
   const Case cases[] = {
-    // (measured: 1.14 and 1.15 at worst, the walk above the spread: the rim's bristles, with little bound, slide)
+    // (measured: 1.14 and 1.16 at worst, the walk above the spread: the rim's bristles, with little bound, slide)
     { "parked, auto, 1 kHz", BrushModelKind::Auto, 1000.0, 0.0, 0.0, 300, 0.7, 0.2 },
     { "parked, transient, 100 Hz", BrushModelKind::Transient, 100.0, 0.0, 0.0, 12, -2.0, 0.2 },
-    // from a rolled field (bristles near their bounds slide and forget; measured 0.76 at worst, and the correlation of
-    // F_y and M_z 0.1 against 0.6: not claimed)
+    // the roll's share leads M_z here (measured 1.23 at worst, over the spread in the first messages, where the roots
+    // rolled less than a lattice spacing; 0.60 without the roll; over the envelope the moment arm alone, without what
+    // the roll carries out at the rim, overstated M_z's up to 3.1 times)
+    { "parked, uniform pressure, auto, 100 Hz", BrushModelKind::Auto, 100.0, 0.0, 0.0, 52, 0.3, 0.3, true },
+    // from a rolled field (bristles near their bounds slide and forget; measured 0.79 and 1.21 at worst, and the
+    // correlation of F_y and M_z 0.1-0.2 against 0.6: not claimed)
     { "parked after a skid, auto, 1 kHz", BrushModelKind::Auto, 1000.0, 0.0, 0.05, 300, 0.0, 0.30 },
     // most bristles slide: not followed
     { "spinning in place, auto, 1 kHz", BrushModelKind::Auto, 1000.0, 4.0, 0.0, 300, 1.2, 0.0 },
   };
-  Eigen::Matrix<double, 6, 1> sd;
-  sd << 0.004, 0.004, 0.0, 0.03, 0.03, 0.05;  // [m/s], [rad/s]: R_r sd(omega_x,y) = 3 mm/s, far below standstill
-  TwistCovariance C = TwistCovariance::Identity();
-  C(0, 4) = C(4, 0) = 0.5;  // the contact centre's and the sphere's velocities from the same encoders
-  C(1, 3) = C(3, 1) = -0.5;
-  const TwistCovariance twist = sd.asDiagonal() * C * sd.asDiagonal();
-  const Eigen::Matrix<double, 5, 5> S = usedTwistCovariance(twist);
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 5, 5>> eig(S);
-  const Eigen::Matrix<double, 5, 5> root = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+  const auto noise = [](bool uniform_robot) {
+    Eigen::Matrix<double, 6, 1> sd;
+    sd << 0.004, 0.004, 0.0, 0.03, 0.03, 0.05;  // [m/s], [rad/s]: R_r sd(omega_x,y) = 3 mm/s, far below standstill
+    TwistCovariance C = TwistCovariance::Identity();
+    C(0, 4) = C(4, 0) = 0.5;  // the contact centre's and the sphere's velocities from the same encoders
+    C(1, 3) = C(3, 1) = -0.5;
+    if (uniform_robot)
+    {
+      sd << 0.006, 0.006, 0.0, 0.024, 0.024, 0.024;
+      C = TwistCovariance::Identity();  // (V_C and omega independent: the roll's share is largest)
+    }
+    return TwistCovariance(sd.asDiagonal() * C * sd.asDiagonal());
+  };
   constexpr int kDraws = 400;
   for (const Case& c : cases)
   {
     EstimatorSettings settings;
     settings.brush_model = c.model;
+    if (c.uniform_robot)
+    {
+      settings.patch_radius = 0.00557;
+      settings.bristle_stiffness = 2.3e8;
+      settings.robot_mass = 7.78;
+      settings.friction = 0.678;
+      settings.pressure = PressureDistribution::Uniform;
+    }
+    const TwistCovariance twist = noise(c.uniform_robot);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 5, 5>> eig(usedTwistCovariance(twist));
+    const Eigen::Matrix<double, 5, 5> root =
+        eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
     const double dt = 1.0 / c.rate;
     const int checks[3] = { c.messages / 6, c.messages / 2, c.messages - 1 };
     std::vector<Eigen::Vector3d> F[3];
@@ -695,11 +781,21 @@ TEST(EstimateCovariance, StandstillRandomWalkAgainstMonteCarlo)
                                              << ": walked " << std::sqrt(walked[i](j, j)) << ", Monte Carlo "
                                              << std::sqrt(mc(j, j));
       }
-      for (int j = 0; j < 3 && c.skid == 0.0; ++j)
+      for (int j = 0; j < 3; ++j)
         for (int l = j + 1; l < 3; ++l)
-          EXPECT_NEAR(walked[i](j, l) / std::sqrt(walked[i](j, j) * walked[i](l, l)),
-                      mc(j, l) / std::sqrt(mc(j, j) * mc(l, l)), c.tolerance)
-              << c.name << ", message " << checks[i] << ", correlation " << j << l;
+        {
+          const double r_walked = walked[i](j, l) / std::sqrt(walked[i](j, j) * walked[i](l, l));
+          const double r_mc = mc(j, l) / std::sqrt(mc(j, j) * mc(l, l));
+          std::printf("  %s, message %d: correlation %d%d walked %.2f, Monte Carlo %.2f\n", c.name, checks[i], j, l,
+                      r_walked, r_mc);
+          if (c.skid == 0.0)
+          {
+            EXPECT_NEAR(r_walked, r_mc, c.tolerance) << c.name << ", message " << checks[i] << ", correlation " << j << l;
+          }
+        }
+      std::printf("  %s, message %d: walked / Monte Carlo standard deviations %.2f %.2f %.2f\n", c.name, checks[i],
+                  std::sqrt(walked[i](0, 0) / mc(0, 0)), std::sqrt(walked[i](1, 1) / mc(1, 1)),
+                  std::sqrt(walked[i](2, 2) / mc(2, 2)));
     }
     std::printf("%s: worst walked / Monte Carlo standard deviation %.3f\n", c.name, worst);
   }

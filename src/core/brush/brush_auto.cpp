@@ -687,7 +687,7 @@ void BrushAuto::visitBristles(const BristleVisitor& visit) const
     steady_.visitBristles(last_slips_, visit);
 }
 
-bool BrushAuto::adhesionResponse(Eigen::Matrix3d& response, long& work) const
+bool BrushAuto::adhesionResponse(AdhesionResponse& response, long& work) const
 {
   // the lattice the next update advances without rolling: the one under way (answering, or rolling beside the steady
   // answer on probation) or one still undeformed (nothing rolled since a reset); not one that a warm start is about to

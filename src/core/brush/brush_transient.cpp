@@ -1104,30 +1104,59 @@ void BrushTransient::gather(LatticeSums& g) const
   }
 }
 
-bool BrushTransient::adhesionResponse(Eigen::Matrix3d& response, long& work) const
+bool BrushTransient::adhesionResponse(AdhesionResponse& response, long& work) const
 {
   // F = k sum u dA, M_z = k sum (x_x u_y - x_y u_x) dA (sums()); an adhering bristle's u' = w with
   // dw / d(V_s,x, V_s,y, omega_z) = [[-1, 0, x_y], [0, -1, -x_x]] (eq. 1, drive()); dA as the sums weigh the cells
   const FrictionCap cap(p_);
   double load = 0.0, S0 = 0.0, S2 = 0.0;
-  Eigen::Vector2d S1 = Eigen::Vector2d::Zero();
-  forEachBristle([&](const Eigen::Vector2d& x, const Eigen::Vector2d& /*u*/, bool sliding) {
-    load += cap.qz(x.squaredNorm());
+  Eigen::Vector2d S1 = Eigen::Vector2d::Zero(), F = Eigen::Vector2d::Zero();
+  // the roll's share, per metre along each direction e_j: the adhering field moves with the roots, its moment by
+  // e_j x F (a sliding bristle stays on the bound the patch's pressure sets: its force stays put); and the bristles
+  // within a spacing of the rim each leave with the chance (e_j . n)+ / h, taking (u, x x u) with them
+  std::array<Eigen::Vector3d, AdhesionResponse::kDirections> lost;
+  lost.fill(Eigen::Vector3d::Zero());
+  const double band = p_.a - h_;
+  long rim = 0;  // points in the band (each about 5 units more: 32 directions at about 8 instructions)
+  std::array<Eigen::Vector2d, AdhesionResponse::kDirections> directions;
+  for (int j = 0; j < AdhesionResponse::kDirections; ++j)
+    directions[j] = AdhesionResponse::direction(j);
+  forEachBristle([&](const Eigen::Vector2d& x, const Eigen::Vector2d& u, bool sliding) {
+    const double r2 = x.squaredNorm();
+    load += cap.qz(r2);
+    if (r2 > band * band)
+    {
+      ++rim;
+      const Eigen::Vector3d g(u.x(), u.y(), x.x() * u.y() - x.y() * u.x());
+      const Eigen::Vector2d n = x / std::sqrt(r2);
+      for (int j = 0; j < AdhesionResponse::kDirections; ++j)
+      {
+        const double out = n.dot(directions[j]);
+        if (out > 0.0)
+          lost[j] += out * g;
+      }
+    }
     if (sliding)
       return;
     S0 += 1.0;
     S1 += x;
-    S2 += x.squaredNorm();
+    S2 += r2;
+    F += u;
   });
-  work = sumsWork();
-  response.setZero();
+  work = sumsWork() + rim * (AdhesionResponse::kDirections * 8 / 50);
+  response = AdhesionResponse{};
   if (!(load > 0.0))
     return true;  // no load: no forces to move
   const double kdA = p_.k * rows_->load(0, p_.F_z) / load;
-  response << -S0, 0.0, S1.y(),  //
-      0.0, -S0, -S1.x(),         //
+  response.drive << -S0, 0.0, S1.y(),  //
+      0.0, -S0, -S1.x(),               //
       S1.y(), -S1.x(), -S2;
-  response *= kdA;
+  response.drive *= kdA;
+  for (int j = 0; j < AdhesionResponse::kDirections; ++j)
+  {
+    const Eigen::Vector2d& e = directions[j];
+    response.roll.col(j) = kdA * (Eigen::Vector3d(0.0, 0.0, e.x() * F.y() - e.y() * F.x()) - lost[j] / h_);
+  }
   return true;
 }
 

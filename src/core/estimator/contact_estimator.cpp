@@ -517,7 +517,7 @@ void ContactEstimator::walkBrushCovariance(const EstimatorInput& in, ContactEsti
     undefined();
     return;
   }
-  Eigen::Matrix3d response;
+  AdhesionResponse response;
   long work = 0;
   if (!brush_->adhesionResponse(response, work))
   {
@@ -528,7 +528,7 @@ void ContactEstimator::walkBrushCovariance(const EstimatorInput& in, ContactEsti
   o.work += work;
   const BrushParameters& p = brush_->parameters();
   const double limit = p.mu * p.F_z;
-  const Eigen::Matrix<double, 3, 5> G = driveJacobian(settings_.rolling_radius, heading_);
+  const Eigen::Matrix<double, 5, 5> G = driveJacobian(settings_.rolling_radius, heading_);
   const Eigen::Matrix<double, 5, 5> S = usedTwistCovariance(in.twist_covariance);
   walk_.advance(response, G * S * G.transpose(), o.dt, Eigen::Vector3d(limit, limit, limit * p.a));
   publishWalk(o);

@@ -35,20 +35,22 @@ Eigen::Matrix<double, 5, 5> usedTwistCovariance(const TwistCovariance& C)
   return out;
 }
 
-Eigen::Matrix<double, 1, 5> speedJacobian(double R_r, double heading)
-{
-  return (toContact(heading) * rollingVelocityJacobian(R_r)).row(0);  // V_r lies along the contact frame's x
-}
-
-Eigen::Matrix<double, 3, 5> driveJacobian(double R_r, double heading)
+Eigen::Matrix<double, 5, 5> driveJacobian(double R_r, double heading)
 {
   const Eigen::Matrix2d Rc = toContact(heading);
   Eigen::Matrix<double, 2, 5> dV_C = Eigen::Matrix<double, 2, 5>::Zero();
   dV_C(0, 0) = dV_C(1, 1) = 1.0;
-  Eigen::Matrix<double, 3, 5> J = Eigen::Matrix<double, 3, 5>::Zero();
-  J.topRows<2>() = Rc * dV_C - Rc * rollingVelocityJacobian(R_r);  // V_s = V_C - V_r, turned into the contact frame
+  const Eigen::Matrix<double, 2, 5> dV_r = Rc * rollingVelocityJacobian(R_r);
+  Eigen::Matrix<double, 5, 5> J = Eigen::Matrix<double, 5, 5>::Zero();
+  J.topRows<2>() = Rc * dV_C - dV_r;  // V_s = V_C - V_r, turned into the contact frame
   J(2, 4) = 1.0;  // omega_z: the same about the ground's z and the contact frame's
+  J.bottomRows<2>() = dV_r;
   return J;
+}
+
+Eigen::Matrix<double, 1, 5> speedJacobian(double R_r, double heading)
+{
+  return driveJacobian(R_r, heading).row(3);  // V_r lies along the contact frame's x
 }
 
 Eigen::Matrix<double, 4, 5> slipJacobian(const Eigen::Vector3d& omega, const Eigen::Vector2d& v_contact, double R_r,
@@ -58,8 +60,9 @@ Eigen::Matrix<double, 4, 5> slipJacobian(const Eigen::Vector3d& omega, const Eig
   const Eigen::Vector2d V_r = R_r * Eigen::Vector2d(omega.y(), -omega.x());
   const double V = (Rc * V_r).x();  // the contact frame's x is along V_r
   const Eigen::Vector2d V_s = Rc * (v_contact - V_r);  // contact frame, ROS axes
-  const Eigen::Matrix<double, 2, 5> dV_r = Rc * rollingVelocityJacobian(R_r);
-  const Eigen::Matrix<double, 2, 5> dV_s = driveJacobian(R_r, heading).topRows<2>();
+  const Eigen::Matrix<double, 5, 5> drive = driveJacobian(R_r, heading);
+  const Eigen::Matrix<double, 2, 5> dV_s = drive.topRows<2>();
+  const Eigen::Matrix<double, 2, 5> dV_r = drive.bottomRows<2>();
   const Eigen::Matrix<double, 1, 5> dV = dV_r.row(0);
   // sigma = -V_s / V (eq. 12) and phi = -omega_z / V in the paper frame, where omega_z and y change sign (eq. 13)
   const Eigen::Matrix<double, 2, 5> dsigma = -dV_s / V + V_s * dV / (V * V);

@@ -3,23 +3,85 @@
 // STL
 #include <cmath>
 
+// Eigen
+#include <Eigen/Eigenvalues>
+
+// Boost
+#include <boost/math/constants/constants.hpp>
+
 namespace sphere_contact_estimator
 {
+namespace
+{
+// paper (x, y, z) = ROS (x, -y, -z), for the forces and the drive alike
+const Eigen::Matrix3d kPaperToRos = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+
+// L(v) (ROS) for a displacement v (ROS) from the model's table (paper frame: the angle turns sign), linear between
+// its directions
+Eigen::Vector3d roll(const AdhesionResponse& r, const Eigen::Vector2d& v)
+{
+  const double size = v.norm();
+  if (!(size > 0.0))
+    return Eigen::Vector3d::Zero();
+  constexpr int n = AdhesionResponse::kDirections;
+  double t = -std::atan2(v.y(), v.x()) / boost::math::double_constants::two_pi * n;
+  t -= n * std::floor(t / n);
+  const int j = std::min(static_cast<int>(t), n - 1);
+  const double f = t - j;
+  return size * (kPaperToRos * ((1.0 - f) * r.roll.col(j) + f * r.roll.col((j + 1) % n)));
+}
+}  // namespace
+
 void StandstillCovariance::restart(const Eigen::Matrix3d& start)
 {
   sigma_ = start;
   known_ = true;
 }
 
-void StandstillCovariance::advance(const Eigen::Matrix3d& response, const Eigen::Matrix3d& drive, double dt,
-                                   const Eigen::Vector3d& limits)
+void StandstillCovariance::advance(const AdhesionResponse& response, const Eigen::Matrix<double, 5, 5>& drive,
+                                   double dt, const Eigen::Vector3d& limits)
 {
   if (!known_ || !(dt > 0.0))
     return;
-  // paper (x, y, z) = ROS (x, -y, -z), for the forces and the drive alike
-  const Eigen::Matrix3d D = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
-  const Eigen::Matrix3d J = dt * (D * response * D);
-  sigma_ += J * drive * J.transpose();
+  // the linear part, dt R w with w = (V_s, omega_z)
+  const Eigen::Matrix3d A = dt * (kPaperToRos * response.drive * kPaperToRos);
+  Eigen::Matrix3d step = A * drive.topLeftCorner<3, 3>() * A.transpose();
+  // the roll, L(d) with d = -V_r dt: d = Sigma_d^(1/2) z, z standard normal, and L homogeneous of degree one, so
+  // E[L] = E|z| <L(Sigma^(1/2) e)>, E[L L^T] = E|z|^2 <L L^T>, E[d L^T] = E|z|^2 Sigma^(1/2) <e L^T>, the means over
+  // the unit circle (kRollNodes directions; |z| Rayleigh: E|z| = sqrt(pi / 2), E|z|^2 = 2)
+  const Eigen::Matrix2d Sigma_d = dt * dt * drive.bottomRightCorner<2, 2>();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(Sigma_d);
+  const Eigen::Vector2d lambda = eig.eigenvalues().cwiseMax(0.0);
+  if (lambda.maxCoeff() > 0.0)
+  {
+    const Eigen::Matrix2d& V = eig.eigenvectors();
+    const Eigen::Matrix2d root = V * lambda.cwiseSqrt().asDiagonal() * V.transpose();
+    Eigen::Vector2d inverse_root_diagonal = Eigen::Vector2d::Zero();  // (the pseudo-inverse where Sigma_d is singular)
+    for (int i = 0; i < 2; ++i)
+      if (lambda(i) > 1e-12 * lambda.maxCoeff())
+        inverse_root_diagonal(i) = 1.0 / std::sqrt(lambda(i));
+    const Eigen::Matrix2d inverse_root = V * inverse_root_diagonal.asDiagonal() * V.transpose();
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+    Eigen::Matrix<double, 2, 3> along = Eigen::Matrix<double, 2, 3>::Zero();
+    for (int j = 0; j < kRollNodes; ++j)
+    {
+      const double angle = boost::math::double_constants::two_pi * (j + 0.5) / kRollNodes;
+      const Eigen::Vector2d e(std::cos(angle), std::sin(angle));
+      const Eigen::Vector3d L = roll(response, root * e);
+      mean += L / kRollNodes;
+      second += L * L.transpose() / kRollNodes;
+      along += e * L.transpose() / kRollNodes;
+    }
+    mean *= std::sqrt(0.5 * boost::math::double_constants::pi);
+    second *= 2.0;
+    along *= 2.0;
+    // Cov(dt R w, L) = Cov(dt R w, d) Sigma_d^-1 E[d L^T] (w's regression on d; w and d jointly Gaussian)
+    const Eigen::Matrix<double, 3, 2> with_d = A * drive.topRightCorner<3, 2>() * (-dt);
+    const Eigen::Matrix3d cross = with_d * inverse_root * along;
+    step += second - mean * mean.transpose() + cross + cross.transpose();
+  }
+  sigma_ += step;
   sigma_ = 0.5 * (sigma_ + sigma_.transpose());
   for (int i = 0; i < 3; ++i)
   {

@@ -1,11 +1,15 @@
 #pragma once
 
 // STL
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string_view>
+
+// Eigen
+#include <Eigen/Core>
 
 // Package
 #include "sphere_contact_estimator/core/brush/brush_forces.h"
@@ -14,6 +18,26 @@
 
 namespace sphere_contact_estimator
 {
+/// How the bristles hold the noise of a robot that stands (BrushModel::adhesionResponse), paper frame.
+struct AdhesionResponse
+{
+  /// d(F_x, F_y, M_z)/dt per unit of (V_s,x, V_s,y, omega_z), summed over the adhering bristles with the weights of the
+  /// force sums
+  Eigen::Matrix3d drive = Eigen::Matrix3d::Zero();
+  static constexpr int kDirections = 32;
+  /// The unit vector at angle 2 pi j / kDirections.
+  static Eigen::Vector2d direction(int j)
+  {
+    const double angle = 2.0 * 3.14159265358979323846 * j / kDirections;
+    return { std::cos(angle), std::sin(angle) };
+  }
+  /// d(F_x, F_y, M_z) per metre the roots move along the direction at angle 2 pi j / kDirections (eq. 31: they move at
+  /// -V_r): the deflection field moves with them, so the adhering bristles' moment about the patch centre changes by
+  /// (displacement) x F_adhering, and what they carry out of the patch at its rim is lost (nothing comes back: it
+  /// re-enters undeformed, so the change is one-sided, not linear in the displacement) [N/m, N]
+  Eigen::Matrix<double, 3, kDirections> roll = Eigen::Matrix<double, 3, kDirections>::Zero();
+};
+
 /// The brush models, and none; the numbers are those of the node's brush_model parameter.
 enum class BrushModelKind : std::uint8_t
 {
@@ -87,12 +111,11 @@ public:
   using BristleVisitor = std::function<void(const Eigen::Vector2d& x, const Eigen::Vector2d& u, bool sliding)>;
   virtual void visitBristles(const BristleVisitor& /*visit*/) const {}
   /// How the bristle state integrates the drive while the patch does not roll (eq. 1 at V_r = 0: an adhering bristle's
-  /// u' = w = -V_s - A_omega_z x, a sliding one stays on its bound): d(F_x, F_y, M_z)/dt per unit of (V_s,x, V_s,y,
-  /// omega_z), paper frame, summed over the adhering bristles with the weights of the force sums; `work` what that pass
-  /// costs (BrushForces::work units). An input error of one message stays in the state, so at standstill the forces'
-  /// covariance integrates the inputs' (StandstillCovariance). False where there is no such state (linear, steady:
-  /// zero forces at standstill).
-  virtual bool adhesionResponse(Eigen::Matrix3d& /*response*/, long& /*work*/) const { return false; }
+  /// u' = w = -V_s - A_omega_z x, a sliding one stays on its bound), and what a small roll of the roots (V_r from the
+  /// noise) does to it (AdhesionResponse); `work` what that pass costs (BrushForces::work units). An input error of one
+  /// message stays in the state, so at standstill the forces' covariance integrates the inputs' (StandstillCovariance).
+  /// False where there is no such state (linear, steady: zero forces at standstill).
+  virtual bool adhesionResponse(AdhesionResponse& /*response*/, long& /*work*/) const { return false; }
 
   const BrushParameters& parameters() const { return p_; }
 

@@ -32,10 +32,11 @@ struct EstimateCovariance
 Eigen::Matrix<double, 4, 5> slipJacobian(const Eigen::Vector3d& omega, const Eigen::Vector2d& v_contact, double R_r,
                                          double heading);
 
-/// d(V_s,x, V_s,y, omega_z) / d(V_Cx, V_Cy, omega_x, omega_y, omega_z): the bristles' drive inputs (eq. 2, V_s = V_C -
-/// V_r with V_r = R_r (omega_y, -omega_x)) in the contact frame at `heading`, ROS axes, against the twist in the
-/// ground frame. Linear: it holds at any speed, standstill included (StandstillCovariance).
-Eigen::Matrix<double, 3, 5> driveJacobian(double R_r, double heading);
+/// d(V_s,x, V_s,y, omega_z, V_r,x, V_r,y) / d(V_Cx, V_Cy, omega_x, omega_y, omega_z): the bristles' drive inputs (eq. 2,
+/// V_s = V_C - V_r with V_r = R_r (omega_y, -omega_x)) and the roots' velocity V_r (eq. 31: they move at -V_r) in the
+/// contact frame at `heading`, ROS axes, against the twist in the ground frame. Linear: it holds at any speed,
+/// standstill included (StandstillCovariance).
+Eigen::Matrix<double, 5, 5> driveJacobian(double R_r, double heading);
 
 /// dV_r / d(V_Cx, V_Cy, omega_x, omega_y, omega_z), V_r = R_r |(omega_y, -omega_x)|, along the heading.
 Eigen::Matrix<double, 1, 5> speedJacobian(double R_r, double heading);
