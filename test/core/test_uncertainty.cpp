@@ -597,7 +597,7 @@ TEST(StandstillCovariance, TheRollsMomentsAgainstClosedForms)
   Eigen::Matrix<double, 3, 2> M;
   M << 300.0, -200.0, 50.0, 400.0, 2.0, -3.0;
   for (int j = 0; j < AdhesionResponse::kDirections; ++j)
-    r.roll.col(j) = M * AdhesionResponse::direction(j);
+    r.roll.col(j) = M * AdhesionResponse::directions()[j];
   Eigen::Matrix<double, 3, 2> M_ros = P2R * M;
   M_ros.col(1) *= -1.0;  // a displacement's y turns sign too
   Eigen::Matrix<double, 3, 5> G;
@@ -616,7 +616,7 @@ TEST(StandstillCovariance, TheRollsMomentsAgainstClosedForms)
   const Eigen::Vector3d c(5.0, -2.0, 0.1);
   r.drive.setZero();
   for (int j = 0; j < AdhesionResponse::kDirections; ++j)
-    r.roll.col(j) = -c * std::max(0.0, n.dot(AdhesionResponse::direction(j)));
+    r.roll.col(j) = -c * std::max(0.0, n.dot(AdhesionResponse::directions()[j]));
   const Eigen::Vector2d n_ros(n.x(), -n.y());
   const double s2 = dt * dt * n_ros.dot(drive.bottomRightCorner<2, 2>() * n_ros);
   const Eigen::Vector3d c_ros = P2R * c;

@@ -14,6 +14,20 @@
 
 namespace sphere_contact_estimator
 {
+const std::array<Eigen::Vector2d, AdhesionResponse::kDirections>& AdhesionResponse::directions()
+{
+  static const std::array<Eigen::Vector2d, kDirections> table = [] {
+    std::array<Eigen::Vector2d, kDirections> t;
+    for (int j = 0; j < kDirections; ++j)
+    {
+      const double angle = 2.0 * 3.14159265358979323846 * j / kDirections;
+      t[j] = Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    }
+    return t;
+  }();
+  return table;
+}
+
 const char* toString(BrushModelKind kind)
 {
   switch (kind)

@@ -64,10 +64,8 @@ void StandstillCovariance::advance(const AdhesionResponse& response, const Eigen
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
     Eigen::Matrix<double, 2, 3> along = Eigen::Matrix<double, 2, 3>::Zero();
-    for (int j = 0; j < kRollNodes; ++j)
+    for (const Eigen::Vector2d& e : AdhesionResponse::directions())  // (kRollNodes of them)
     {
-      const double angle = boost::math::double_constants::two_pi * (j + 0.5) / kRollNodes;
-      const Eigen::Vector2d e(std::cos(angle), std::sin(angle));
       const Eigen::Vector3d L = roll(response, root * e);
       mean += L / kRollNodes;
       second += L * L.transpose() / kRollNodes;

@@ -1,6 +1,7 @@
 #pragma once
 
 // STL
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -25,12 +26,8 @@ struct AdhesionResponse
   /// force sums
   Eigen::Matrix3d drive = Eigen::Matrix3d::Zero();
   static constexpr int kDirections = 32;
-  /// The unit vector at angle 2 pi j / kDirections.
-  static Eigen::Vector2d direction(int j)
-  {
-    const double angle = 2.0 * 3.14159265358979323846 * j / kDirections;
-    return { std::cos(angle), std::sin(angle) };
-  }
+  /// The unit vectors at angles 2 pi j / kDirections (computed once).
+  static const std::array<Eigen::Vector2d, kDirections>& directions();
   /// d(F_x, F_y, M_z) per metre the roots move along the direction at angle 2 pi j / kDirections (eq. 31: they move at
   /// -V_r): the deflection field moves with them, so the adhering bristles' moment about the patch centre changes by
   /// (displacement) x F_adhering, and what they carry out of the patch at its rim is lost (nothing comes back: it

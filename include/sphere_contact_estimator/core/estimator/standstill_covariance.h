@@ -43,8 +43,8 @@ public:
   bool known() const { return known_; }
   /// Beyond this share of the bristles sliding (spinning in place) the walk is not followed.
   static constexpr double kSlidingShare = 0.5;
-  /// Directions over which the roll's moments are averaged.
-  static constexpr int kRollNodes = 32;
+  /// Directions over which the roll's moments are averaged (AdhesionResponse::directions).
+  static constexpr int kRollNodes = AdhesionResponse::kDirections;
 
   /// One message of dt [s]: response the model's (paper frame), drive the covariance of
   /// (V_s,x, V_s,y, omega_z, V_r,x, V_r,y) (ROS contact frame, driveJacobian), limits the largest standard deviations
