@@ -5,6 +5,9 @@
 #include <sstream>
 #include <stdexcept>
 
+// Boost
+#include <boost/math/constants/constants.hpp>
+
 // Package
 #include "sphere_contact_estimator/core/brush/brush_auto.h"
 #include "sphere_contact_estimator/core/brush/brush_linear.h"
@@ -20,7 +23,7 @@ const std::array<Eigen::Vector2d, AdhesionResponse::kDirections>& AdhesionRespon
     std::array<Eigen::Vector2d, kDirections> t;
     for (int j = 0; j < kDirections; ++j)
     {
-      const double angle = 2.0 * 3.14159265358979323846 * j / kDirections;
+      const double angle = boost::math::double_constants::two_pi * j / kDirections;
       t[j] = Eigen::Vector2d(std::cos(angle), std::sin(angle));
     }
     return t;

@@ -482,9 +482,7 @@ void ContactEstimator::propagateBrushCovariance(const EstimatorInput& in, double
     walk_.lose();
     return;
   }
-  // paper (x, y, z) = ROS (x, -y, -z): F_y and M_z change sign
-  const Eigen::Matrix3d D = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
-  c.brush = D * f.covariance * D;
+  c.brush = paper_frame::toRos(f.covariance);  // F_y and M_z change sign
   c.brush_method = f.method;
   c.brush_spread = f.spread(p);
   if (!c.brush.allFinite())

@@ -9,26 +9,26 @@
 // Boost
 #include <boost/math/constants/constants.hpp>
 
+// Package
+#include "sphere_contact_estimator/core/estimator/paper_frame.h"
+
 namespace sphere_contact_estimator
 {
 namespace
 {
-// paper (x, y, z) = ROS (x, -y, -z), for the forces and the drive alike
-const Eigen::Matrix3d kPaperToRos = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
-
-// L(v) (ROS) for a displacement v (ROS) from the model's table (paper frame: the angle turns sign), linear between
-// its directions
-Eigen::Vector3d roll(const AdhesionResponse& r, const Eigen::Vector2d& v)
+// L(v) (ROS) for a displacement v (ROS) from the model's table (paper frame), linear between its directions
+Eigen::Vector3d roll(const AdhesionResponse& r, const Eigen::Vector2d& v_ros)
 {
+  const Eigen::Vector2d v = paper_frame::fromRos(v_ros);
   const double size = v.norm();
   if (!(size > 0.0))
     return Eigen::Vector3d::Zero();
   constexpr int n = AdhesionResponse::kDirections;
-  double t = -std::atan2(v.y(), v.x()) / boost::math::double_constants::two_pi * n;
+  double t = std::atan2(v.y(), v.x()) / boost::math::double_constants::two_pi * n;
   t -= n * std::floor(t / n);
   const int j = std::min(static_cast<int>(t), n - 1);
   const double f = t - j;
-  return size * (kPaperToRos * ((1.0 - f) * r.roll.col(j) + f * r.roll.col((j + 1) % n)));
+  return size * paper_frame::toRos(Eigen::Vector3d((1.0 - f) * r.roll.col(j) + f * r.roll.col((j + 1) % n)));
 }
 }  // namespace
 
@@ -44,7 +44,7 @@ void StandstillCovariance::advance(const AdhesionResponse& response, const Eigen
   if (!known_ || !(dt > 0.0))
     return;
   // the linear part, dt R w with w = (V_s, omega_z)
-  const Eigen::Matrix3d A = dt * (kPaperToRos * response.drive * kPaperToRos);
+  const Eigen::Matrix3d A = dt * paper_frame::toRos(response.drive);  // (paper to ROS: the forces and the drive alike)
   Eigen::Matrix3d step = A * drive.topLeftCorner<3, 3>() * A.transpose();
   // the roll, L(d) with d = -V_r dt: d = Sigma_d^(1/2) z, z standard normal, and L homogeneous of degree one, so
   // E[L] = E|z| <L(Sigma^(1/2) e)>, E[L L^T] = E|z|^2 <L L^T>, E[d L^T] = E|z|^2 Sigma^(1/2) <e L^T>, the means over

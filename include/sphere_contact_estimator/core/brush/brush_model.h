@@ -2,7 +2,6 @@
 
 // STL
 #include <array>
-#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>

@@ -18,6 +18,12 @@ inline Eigen::Vector2d toRos(const Eigen::Vector2d& v) { return { v.x(), -v.y() 
 /// A vector or axial vector in space.
 inline Eigen::Vector3d fromRos(const Eigen::Vector3d& v) { return { v.x(), -v.y(), -v.z() }; }
 inline Eigen::Vector3d toRos(const Eigen::Vector3d& v) { return { v.x(), -v.y(), -v.z() }; }
+/// A linear map between such vectors, or their covariance: D M D, D = diag(1, -1, -1) (its own inverse too).
+inline Eigen::Matrix3d toRos(const Eigen::Matrix3d& M)
+{
+  const Eigen::Vector3d d(1.0, -1.0, -1.0);
+  return d.asDiagonal() * M * d.asDiagonal();
+}
 /// A z component: a spin, a yaw rate or a yaw moment.
 inline double zFromRos(double z) { return -z; }
 inline double zToRos(double z) { return -z; }
