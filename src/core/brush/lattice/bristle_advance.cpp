@@ -216,8 +216,9 @@ int BristleAdvance::advance(BristleState& s, const Eigen::Vector2d& x_start, dou
       continue;
     }
     // eq. (4b)
-    const double re = speed2_ == 0.0 ? coulombSlideStill(s, x, left)
-                                     : coulombSlide(s, x, left, steps, final_event ? steps + 1 : max_steps);
+    const double re = speed2_ == 0.0             ? coulombSlideStill(s, x, left)
+                      : coulombSlideFrozen(s, x, left) ? INFINITY
+                                                       : coulombSlide(s, x, left, steps, final_event ? steps + 1 : max_steps);
     const double run = std::min(re, left);
     x -= run * V_r_;
     left -= run;

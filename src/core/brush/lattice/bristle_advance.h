@@ -43,7 +43,9 @@ struct BristleState
 ///   w.e - db/dtau is watched at the nodes (a re-adhesion located, then stepped to), and no step passes the path's
 ///   entry into G (|w| <= db/dtau), where the bristle has re-adhered at the latest. Without rolling (V_r = 0: parked,
 ///   spin in place) drive and bound are constant along the "path" and the direction relaxes towards the drive in
-///   closed form, tan(delta / 2) ~ e^{-|w| tau / b}: exact, one step.
+///   closed form, tan(delta / 2) ~ e^{-|w| tau / b}: exact, one step. Rolling far less than they change over (a parked
+///   or spinning robot's noise at 1 kHz), the same with both frozen at the path's middle, its third-order error bound
+///   well within the tolerance (coulombSlideFrozen): no step.
 class BristleAdvance
 {
 public:
@@ -121,6 +123,10 @@ private:
   // (re-adhered: < span) and the steps
   double coulombSlide(BristleState& s, const Eigen::Vector2d& x_start, double span, int& steps, int max_steps) const;
   double coulombSlideStill(BristleState& s, const Eigen::Vector2d& x, double span) const;
+  // A piece that rolls far less than its drive and bound change over: coulombSlideStill at the path's middle, its error
+  // bounded by how far they move; true where that is within the tolerance and the bristle slides throughout (then
+  // s advanced, its error carried), else false and s untouched
+  bool coulombSlideFrozen(BristleState& s, const Eigen::Vector2d& x, double span) const;
   // t = 1 - r^2 / a^2 along the path from x (r = |x - V_r tau|): t0 + t1 tau + t2 tau^2
   struct Quadratic
   {

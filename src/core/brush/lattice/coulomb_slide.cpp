@@ -22,6 +22,15 @@ namespace
 constexpr double kRimNear = 0.5;
 // A step with pull |w| / b times its length above this is stiff: the Magnus series' reach (it converges below pi)
 constexpr double kStiffPull = 3.0;
+// coulombSlideFrozen: within this share of the tolerance. Its bound stands about 5 times above its error (test
+// BristleAdvance.SlidingStepErrorBoundsTheErrorInPlaceAndSlow) and carries no contraction beyond the frozen flow's,
+// where the steps it spares claim theirs: at the whole tolerance the 1 kHz recording's pivot (0.3 m/s, half a spacing
+// a message) took it too and its estimates rose by a tenth; spinning in place and parked it stands at a thousandth.
+constexpr double kFrozenShare = 0.05;
+// and only where the path is shorter than this share of the patch radius: its bound grows as Lambda^2 travel / a, which
+// at the tolerance of the coarsest lattice passes this only for a pull Lambda of a few hundredths (1 kHz). Rolling
+// pieces, which failed the check, made the 1 kHz recording 2 % dearer in all (callgrind) before this gate.
+constexpr double kFrozenTravel = 2e-3;
 }  // namespace
 
 double BristleAdvance::coulombSlideStill(BristleState& s, const Eigen::Vector2d& x, double span) const
@@ -49,6 +58,81 @@ double BristleAdvance::coulombSlideStill(BristleState& s, const Eigen::Vector2d&
   const double c = (1.0 - k2) / (1.0 + k2), sn = 2.0 * k / (1.0 + k2);
   s.u = b * (c * e_w + sn * Eigen::Vector2d(-e_w.y(), e_w.x()));
   return INFINITY;
+}
+
+bool BristleAdvance::coulombSlideFrozen(BristleState& s, const Eigen::Vector2d& x, double span) const
+{
+  // A piece that rolls far less than the drive and the bound change over (a parked or spinning robot's noise at 1 kHz):
+  // the drive and the bound frozen at the path's middle m, coulombSlideStill's exact relaxation, where that is within
+  // the tolerance. On the bound the direction obeys theta' = f(tau, theta) = -lambda sin(theta - psi), lambda = |w| / b,
+  // psi = arg w; frozen, f_m. The difference D of the true and the frozen direction obeys D' = k D + r with
+  // k = -lambda_m cos(xi - psi_m) in [-lambda_m, 0] within a right angle of the drive, and r(tau) = (f - f_m)(tau,
+  // theta(tau)), which vanishes at m; so D(span) = int G r with 0 < G <= 1, |G(s) - G(m)| <= lambda_m |s - m|, and
+  // since int r = int (r - r'(m) (s - m)):
+  //   |D(span)| <= span^3 (R2 / 24 + lambda_m R1 / 12),   |D(tau)| <= R1 span^2 / 4 on the way,
+  // R1 >= |r'|, R2 >= |r''| from the path's bounds on lambda, psi and their first two derivatives (w affine in tau,
+  // b = c f(t), t quadratic) and |theta'| <= lambda. Third order: along the slow streams' bristles the first-order bound
+  // (the integral of |f - f_m|) stood 45 times above the error and raised a parked robot's estimate by 2 %.
+  // Both directions stay within a right angle (the frozen one turns towards the drive) and the true one pushed
+  // outward, w . e - db/dtau > 0, checked with the angles' margins: else (and off the tolerance) false, u untouched.
+  if (!(speed2_ * span * span * inv_a2_ <= kFrozenTravel * kFrozenTravel))
+    return false;  // rolling: the check below would fail (and cost a fifth of a step each time)
+  const double un = s.u.norm();
+  const Eigen::Vector2d x_m = x - 0.5 * span * V_r_, w = drive(x_m);
+  const double wn = w.norm(), dw = 0.5 * span * w_dot_norm_;
+  if (!(un > 0.0 && dw < 0.5 * wn))
+    return false;
+  const Quadratic t = tAlong(x);
+  const double t_end = t.t0 + span * (t.t1 + span * t.t2);
+  const double t_lo = std::min(t.t0, t_end);
+  if (!(t_lo > 0.0))
+    return false;  // a rim crossing: the bound's pole is the stepping's
+  const double b_lo = c_ * pressure_.shape(t_lo), b_m = bound(x_m);
+  const double b0 = c_ * pressure_.shape(t.t0), b1 = c_ * pressure_.shape(t_end);
+  // along the path: |t'| <= T1, t'' = 2 t2; f' and |f''| are largest at t_lo (f = t^{m/2}); |w| within dw of |w_m|
+  const double T1 = std::abs(t.t1) + 2.0 * std::abs(t.t2) * span;
+  const double f1 = pressure_.shapeSlope(t_lo), f2 = m_ == 1 ? 0.25 / (t_lo * std::sqrt(t_lo)) : 0.0;
+  const double B1 = c_ * f1 * T1, B2 = c_ * (f2 * T1 * T1 + 2.0 * f1 * std::abs(t.t2));  // |b'|, |b''|
+  const double W_lo = wn - dw, W_hi = wn + dw, Wd = w_dot_norm_;
+  const double L = W_hi / b_lo;                                            // lambda
+  const double L1 = Wd / b_lo + W_hi * B1 / (b_lo * b_lo);                 // |lambda'|
+  const double L2 = Wd * Wd / (W_lo * b_lo) + 2.0 * Wd * B1 / (b_lo * b_lo) + W_hi * B2 / (b_lo * b_lo) +
+                    2.0 * W_hi * B1 * B1 / (b_lo * b_lo * b_lo);           // |lambda''|
+  const double P1 = Wd / W_lo, P2 = 2.0 * P1 * P1;                         // |psi'|, |psi''|
+  const double A1 = L1 + L * P1, A2 = L2 + 2.0 * L1 * P1 + L * (P2 + P1 * P1);  // |f_tau|, |f_tautau|
+  const double R1 = A1 * (1.0 + 0.5 * L * span);
+  const double R2 = A2 + 2.0 * A1 * L + 0.5 * span * A1 * (A1 + 2.0 * L * L);
+  const double lambda = wn / b_m;
+  const double E = span * span * span * (R2 / 24.0 + lambda * R1 / 12.0);
+  if (!(b1 * E <= kFrozenShare * tolerance_))
+    return false;
+  const Eigen::Vector2d e_w = w / wn, e = s.u / un;
+  const double cos_d = e.dot(e_w), sin_d = e_w.x() * e.y() - e_w.y() * e.x();
+  // pushed throughout: the true direction (from within the carried angle of this one's) lies within |delta| + carried +
+  // R1 span^2 / 4 of the frozen drive and that within asin(dw / |w_m|) of the drive at the time, so w . e >= (|w_m| -
+  // dw) cos(|delta| + g) (cos(d + g) >= cos d (1 - g^2 / 2) - |sin d| g), against the bound's largest rate B1
+  const double carried = b0 > 0.0 ? s.step_error / b0 : 0.0;
+  const double g = 0.25 * R1 * span * span + std::asin(dw / wn) + carried;
+  const double cos_reach = cos_d * (1.0 - 0.5 * g * g) - std::abs(sin_d) * g;
+  if (!(cos_reach > 0.0 && W_lo * cos_reach > B1))
+    return false;
+  // the relaxation (coulombSlideStill's closed form) from delta to delta_1: tan(delta_1 / 2) = tan(delta / 2) e^{-Lambda}
+  const double decay = std::exp(-lambda * span);
+  const double k = sin_d / (1.0 + cos_d) * decay, k2 = k * k;
+  const double c = (1.0 - k2) / (1.0 + k2), sn = 2.0 * k / (1.0 + k2);
+  // The carried error (an angle step_error / b0) shrinks by the frozen flow's contraction, the largest derivative of
+  // delta -> delta_1 within the angle a carried direction may have, alpha = |delta| + that angle (below a right angle):
+  // e^{-Lambda} (1 + T^2) / (1 + T^2 e^{-2 Lambda}), T = tan(alpha / 2), growing with T. Beyond a right angle, none.
+  const double cos_alpha = cos_d * (1.0 - 0.5 * carried * carried) - std::abs(sin_d) * carried;
+  double shrink = 1.0;
+  if (cos_alpha > 0.0)
+  {
+    const double T2 = (1.0 - cos_alpha) / (1.0 + cos_alpha);
+    shrink = std::min(1.0, decay * (1.0 + T2) / (1.0 + T2 * decay * decay));
+  }
+  s.u = b1 * (c * e_w + sn * Eigen::Vector2d(-e_w.y(), e_w.x()));
+  s.step_error = b1 * (carried * shrink + E);
+  return true;
 }
 
 // Along a sliding piece from x_p: the drive, the bound and its rate at time tau after its start.
