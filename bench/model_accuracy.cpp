@@ -46,6 +46,7 @@
 #include "brush_coulomb_reference.h"
 #include "brush_marching.h"
 #include "noisy_history.h"
+#include "sample_covariance.h"
 #include "sphere_contact_estimator/core/brush/brush_auto.h"
 #include "sphere_contact_estimator/core/brush/brush_linear.h"
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
@@ -1112,12 +1113,7 @@ int parkedWalk(unsigned seed, int n, int draws, bool roll_noise)
         ++not_walked;
         continue;
       }
-      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-      for (const auto& f : F[i])
-        mean += f / draws;
-      Eigen::Matrix3d mc = Eigen::Matrix3d::Zero();
-      for (const auto& f : F[i])
-        mc += (f - mean) * (f - mean).transpose() / (draws - 1);
+      const Eigen::Matrix3d mc = sce::sampleCovariance(F[i]);
       for (int j = 0; j < 3; ++j)
       {
         if (!(mc(j, j) > 0.0))

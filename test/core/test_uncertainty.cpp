@@ -31,6 +31,7 @@
 #include "sphere_contact_estimator/core/numerics/unscented_transform.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_exact.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_spread.h"
+#include "sample_covariance.h"
 
 namespace sphere_contact_estimator
 {
@@ -47,20 +48,14 @@ Eigen::Matrix<double, M, M> monteCarlo(const Eigen::Matrix<double, N, 1>& mean, 
       eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
   std::normal_distribution<double> g(0.0, 1.0);
   std::vector<Eigen::Matrix<double, M, 1>> y;
-  Eigen::Matrix<double, M, 1> sum = Eigen::Matrix<double, M, 1>::Zero();
   for (int i = 0; i < n; ++i)
   {
     Eigen::Matrix<double, N, 1> z;
     for (int k = 0; k < N; ++k)
       z(k) = g(rng);
     y.push_back(f(mean + root * z));
-    sum += y.back();
   }
-  const Eigen::Matrix<double, M, 1> m = sum / n;
-  Eigen::Matrix<double, M, M> C = Eigen::Matrix<double, M, M>::Zero();
-  for (const auto& v : y)
-    C += (v - m) * (v - m).transpose();
-  return C / (n - 1);
+  return sampleCovariance(y);
 }
 
 // Standard deviations within `sd_tolerance` (relative) and correlations within `corr_tolerance` where the
@@ -767,12 +762,7 @@ TEST(EstimateCovariance, StandstillRandomWalkAgainstMonteCarlo)
     for (int i = 0; i < 3; ++i)
     {
       ASSERT_EQ(F[i].size(), static_cast<std::size_t>(kDraws));
-      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-      for (const auto& f : F[i])
-        mean += f / kDraws;
-      Eigen::Matrix3d mc = Eigen::Matrix3d::Zero();
-      for (const auto& f : F[i])
-        mc += (f - mean) * (f - mean).transpose() / (kDraws - 1);
+      const Eigen::Matrix3d mc = sampleCovariance(F[i]);
       for (int j = 0; j < 3; ++j)
       {
         const double ratio = std::sqrt(walked[i](j, j) / mc(j, j));
