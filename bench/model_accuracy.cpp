@@ -1037,7 +1037,7 @@ int robotHistories(unsigned seed, int n, int resolution, int reference)
   return below == 0 ? 0 : 1;
 }
 
-// `model_accuracy --parked-walk SEED N [DRAWS] [--without-roll-noise]`: the forces' covariance while parked
+// `model_accuracy --parked-walk SEED N [DRAWS] [--without-roll-noise] [--after-skid]`: the forces' covariance while parked
 // (StandstillCovariance, a random
 // walk through the adhering bristles) against Monte Carlo, over N random robots of stream_sweep.py's envelope (patch
 // radius 4-50 mm, k 3e7-1e9 N/m^3, mass 1-40 kg, mu 0.3-1.2, any pressure; the rest the defaults, auto) parked from
@@ -1046,14 +1046,17 @@ int robotHistories(unsigned seed, int n, int resolution, int reference)
 // (F_x, F_y, M_z) over the realisations' sample ones, where every realisation walked there (not where more than half
 // the bristles slide). The ratios' range, median and 5th and 95th percentiles, and where the extremes are.
 // --without-roll-noise: no noise in omega_x, omega_y (the roll of the roots it gives left out, StandstillCovariance).
+// --after-skid: parked after 0.1 s at 0.5 m/s with a lateral slip of 2-8 % either way, without noise (a rolled field
+// whose rear bristles lie on their bounds: StandstillCovariance::band); and the walked correlations against the
+// realisations' too, where both standard deviations are above a hundredth of the largest.
 // docs/uncertainty.md's figures: seed 7, N = 60.
-int parkedWalk(unsigned seed, int n, int draws, bool roll_noise)
+int parkedWalk(unsigned seed, int n, int draws, bool roll_noise, bool after_skid)
 {
   std::mt19937_64 r(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const auto logUniform = [&](double lo, double hi) { return std::exp(std::log(lo) + u(r) * std::log(hi / lo)); };
-  std::vector<double> ratios;
-  Json lowest = nullptr, highest = nullptr;
+  std::vector<double> ratios, correlation_errors;
+  Json lowest = nullptr, highest = nullptr, worst_correlation = nullptr;
   double lo = INFINITY, hi = -INFINITY;
   int checks = 0, not_walked = 0;
   for (int point = 0; point < n; ++point)
@@ -1071,6 +1074,12 @@ int parkedWalk(unsigned seed, int n, int draws, bool roll_noise)
     const double rate = rates[std::min(2, static_cast<int>(3.0 * u(r)))];
     const double scale = 0.5 + 1.5 * u(r);
     const int messages = std::min(300, static_cast<int>(0.5 * rate) + 2);
+    double skid = 0.0;
+    if (after_skid)
+    {
+      const double side = u(r) < 0.5 ? -1.0 : 1.0;
+      skid = side * (0.02 + 0.06 * u(r));
+    }
     Eigen::Matrix<double, 6, 1> sd;
     sd << 0.005 * scale, 0.005 * scale, 0.0, 0.02 * scale, 0.02 * scale, 0.02 * scale;  // the demo's, scaled
     if (!roll_noise)
@@ -1085,10 +1094,21 @@ int parkedWalk(unsigned seed, int n, int draws, bool roll_noise)
     for (int d = 0; d < draws; ++d)
     {
       sce::ContactEstimator e(s);
+      const int rolled = after_skid ? static_cast<int>(0.1 * rate) : 0;
+      for (int k = 0; k < rolled; ++k)
+      {
+        // rolling at 0.5 m/s along x (ROS), sliding sideways by skid times that: V_r = R (omega_y, -omega_x)
+        sce::EstimatorInput in;
+        in.stamp = k / rate;
+        in.omega = Eigen::Vector3d(0.0, 0.5 / s.rolling_radius, 0.0);
+        in.v_contact = Eigen::Vector3d(0.5, -0.5 * skid, 0.0);
+        in.twist_covariance = sce::TwistCovariance::Zero();  // the state at the stop is known
+        e.update(in);
+      }
       for (int k = 0; k < messages; ++k)
       {
         sce::EstimatorInput in;
-        in.stamp = k / rate;
+        in.stamp = (rolled + k) / rate;
         in.v_contact = Eigen::Vector3d(sd(0) * g(noise), sd(1) * g(noise), 0.0);
         in.omega = Eigen::Vector3d(sd(3) * g(noise), sd(4) * g(noise), sd(5) * g(noise));
         in.twist_covariance = twist;
@@ -1114,6 +1134,19 @@ int parkedWalk(unsigned seed, int n, int draws, bool roll_noise)
         continue;
       }
       const Eigen::Matrix3d mc = sce::sampleCovariance(F[i]);
+      const double largest = mc.diagonal().maxCoeff();
+      for (int j = 0; j < 3; ++j)
+        for (int l = j + 1; l < 3; ++l)
+        {
+          if (!(mc(j, j) > 1e-4 * largest && mc(l, l) > 1e-4 * largest))
+            continue;
+          const double error = std::abs(walked[i](j, l) / std::sqrt(walked[i](j, j) * walked[i](l, l)) -
+                                        mc(j, l) / std::sqrt(mc(j, j) * mc(l, l)));
+          correlation_errors.push_back(error);
+          if (worst_correlation.is_null() || error > worst_correlation["error"].get<double>())
+            worst_correlation = Json{ { "point", point }, { "message", at[i] }, { "pair", std::to_string(j) + std::to_string(l) },
+                                      { "error", error }, { "rate", rate }, { "skid", skid } };
+        }
       for (int j = 0; j < 3; ++j)
       {
         if (!(mc(j, j) > 0.0))
@@ -1131,6 +1164,7 @@ int parkedWalk(unsigned seed, int n, int draws, bool roll_noise)
                           { "pressure", sce::toString(s.pressure) },
                           { "rate", rate },
                           { "noise_scale", scale },
+                          { "skid", skid },
                           { "spread", s.friction > 0.0 ? std::sqrt(walked[i](j, j)) /
                                                              (s.friction * s.verticalLoad() * (j == 2 ? s.patch_radius : 1.0))
                                                        : 0.0 } };
@@ -1146,10 +1180,20 @@ int parkedWalk(unsigned seed, int n, int draws, bool roll_noise)
   const auto percentile = [&](double q) {
     return ratios.empty() ? NAN : ratios[std::min(ratios.size() - 1, static_cast<std::size_t>(q * ratios.size()))];
   };
+  std::sort(correlation_errors.begin(), correlation_errors.end());
   std::cout << Json{ { "seed", seed },
                      { "robots", n },
                      { "draws", draws },
                      { "roll_noise", roll_noise },
+                     { "after_skid", after_skid },
+                     { "correlation_error_median",
+                       correlation_errors.empty() ? NAN : correlation_errors[correlation_errors.size() / 2] },
+                     { "correlation_error_p95",
+                       correlation_errors.empty()
+                           ? NAN
+                           : correlation_errors[std::min(correlation_errors.size() - 1,
+                                                         static_cast<std::size_t>(0.95 * correlation_errors.size()))] },
+                     { "worst_correlation", worst_correlation },
                      { "p05", percentile(0.05) },
                      { "p95", percentile(0.95) },
                      { "checks", checks },
@@ -1168,7 +1212,7 @@ int parkedWalk(unsigned seed, int n, int draws, bool roll_noise)
 int usage()
 {
   std::cerr << "usage: model_accuracy [N] | --sweep SEED N [--law coulomb|rigid] | --robot-histories SEED N "
-               "[RES [REF]] | --uncertainty | --parked-walk SEED N [DRAWS] [--without-roll-noise]\n";
+               "[RES [REF]] | --uncertainty | --parked-walk SEED N [DRAWS] [--without-roll-noise] [--after-skid]\n";
   return 2;
 }
 
@@ -1187,7 +1231,7 @@ int main(int argc, char** argv)
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h"))
   {
     std::cout << "usage: model_accuracy [N] | --sweep SEED N [--law coulomb|rigid] | --robot-histories SEED N "
-                 "[RES [REF]] | --uncertainty | --parked-walk SEED N [DRAWS] [--without-roll-noise]\n"
+                 "[RES [REF]] | --uncertainty | --parked-walk SEED N [DRAWS] [--without-roll-noise] [--after-skid]\n"
                  "  N: random operating points (default 1000); JSON on stdout, progress on stderr\n";
     return 0;
   }
@@ -1219,13 +1263,16 @@ int main(int argc, char** argv)
     std::vector<std::string> rest(args.begin() + 1, args.end());
     const bool roll_noise = std::find(rest.begin(), rest.end(), "--without-roll-noise") == rest.end();
     rest.erase(std::remove(rest.begin(), rest.end(), "--without-roll-noise"), rest.end());
+    const bool after_skid = std::find(rest.begin(), rest.end(), "--after-skid") != rest.end();
+    rest.erase(std::remove(rest.begin(), rest.end(), "--after-skid"), rest.end());
     if (rest.size() < 2 || rest.size() > 3)
       return usage();
     const std::optional<long> seed = wholeNumber(rest[0], 0, 4294967295L), n = wholeNumber(rest[1], 1, 100000);
     const std::optional<long> draws = rest.size() > 2 ? wholeNumber(rest[2], 10, 100000) : std::optional<long>(300);
     if (!seed || !n || !draws)
       return usage();
-    return parkedWalk(static_cast<unsigned>(*seed), static_cast<int>(*n), static_cast<int>(*draws), roll_noise);
+    return parkedWalk(static_cast<unsigned>(*seed), static_cast<int>(*n), static_cast<int>(*draws), roll_noise,
+                      after_skid);
   }
   const auto start = Clock::now();
   Json out;

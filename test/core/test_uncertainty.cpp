@@ -600,7 +600,7 @@ TEST(StandstillCovariance, TheRollsMomentsAgainstClosedForms)
   const Eigen::Matrix3d linear = G * drive * G.transpose();
   StandstillCovariance walk;
   walk.restart(Eigen::Matrix3d::Zero());
-  walk.advance(r, drive, dt, limits);
+  walk.advance(r, drive, dt, limits, 0.01);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       EXPECT_NEAR(walk.covariance()(i, j), linear(i, j), 5e-3 * std::sqrt(linear(i, i) * linear(j, j))) << i << j;
@@ -617,7 +617,7 @@ TEST(StandstillCovariance, TheRollsMomentsAgainstClosedForms)
   const Eigen::Vector3d c_ros = P2R * c;
   const Eigen::Matrix3d one_sided = c_ros * c_ros.transpose() * s2 * (0.5 - 0.5 / M_PI);
   walk.restart(Eigen::Matrix3d::Zero());
-  walk.advance(r, drive, dt, limits);
+  walk.advance(r, drive, dt, limits, 0.01);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       EXPECT_NEAR(walk.covariance()(i, j), one_sided(i, j), 2e-2 * std::sqrt(one_sided(i, i) * one_sided(j, j)))
@@ -627,7 +627,7 @@ TEST(StandstillCovariance, TheRollsMomentsAgainstClosedForms)
   still.bottomRows<2>().setZero();
   still.rightCols<2>().setZero();
   walk.restart(Eigen::Matrix3d::Zero());
-  walk.advance(r, still, dt, limits);
+  walk.advance(r, still, dt, limits, 0.01);
   EXPECT_EQ(walk.covariance(), Eigen::Matrix3d::Zero());
 }
 
@@ -652,20 +652,30 @@ TEST(EstimateCovariance, StandstillRandomWalkAgainstMonteCarlo)
     bool uniform_robot = false;  // model_accuracy --parked-walk 7 60's robot 39: a = 5.6 mm, k 2.3e8, 7.8 kg, mu
                                  // 0.68, the uniform pressure (its rim holds deflection: the roll's loss there), and
                                  // its noise: independent, 1.2 times the demo's
+    double spun = 0.0;  // before standing: spinning in place at 5 rad/s this long [s], noise-free (0: none)
+    double above = 0.0;  // the standard deviations' ratio may pass 1 by this much instead of `tolerance` (0: the same)
   };
   const Case cases[] = {
-    // (measured: 1.14 and 1.16 at worst, the walk above the spread: the rim's bristles, with little bound, slide)
+    // (measured: 1.11 and 1.18 at worst, the walk above the spread: the rim's bristles, with little bound, slide and
+    // forget; 1.14 and 1.16 with the sliding ones left out of the response)
     { "parked, auto, 1 kHz", BrushModelKind::Auto, 1000.0, 0.0, 0.0, 300, 0.7, 0.2 },
     { "parked, transient, 100 Hz", BrushModelKind::Transient, 100.0, 0.0, 0.0, 12, -2.0, 0.2 },
     // the roll's share leads M_z here (measured 1.23 at worst, over the spread in the first messages, where the roots
     // rolled less than a lattice spacing; 0.60 without the roll; over the envelope the moment arm alone, without what
     // the roll carries out at the rim, overstated M_z's up to 3.1 times)
     { "parked, uniform pressure, auto, 100 Hz", BrushModelKind::Auto, 100.0, 0.0, 0.0, 52, 0.3, 0.3, true },
-    // from a rolled field (bristles near their bounds slide and forget; measured 0.79 and 1.21 at worst, and the
-    // correlation of F_y and M_z 0.1-0.2 against 0.6: not claimed)
-    { "parked after a skid, auto, 1 kHz", BrushModelKind::Auto, 1000.0, 0.0, 0.05, 300, 0.0, 0.30 },
+    // from a rolled field, whose rear bristles lie on their bounds (measured 1.03 and 1.17 at worst, the correlation of
+    // F_y and M_z 0.45-0.49 against 0.59-0.65; without the band of the bound, StandstillCovariance::band, 0.80 and 1.22
+    // and 0.08-0.18, which fails)
+    { "parked after a skid, auto, 1 kHz", BrushModelKind::Auto, 1000.0, 0.0, 0.05, 300, 0.0, 0.2 },
     // most bristles slide: not followed
     { "spinning in place, auto, 1 kHz", BrushModelKind::Auto, 1000.0, 4.0, 0.0, 300, 1.2, 0.0 },
+    // parked after spinning in place (the recorded manoeuvre's park), the bristles on their bounds about the spin
+    // pole: the noise pushes them off their bounds and never back on, a ratchet that the walk's per-message shares do
+    // not see; measured 1.03-1.19 for F, and M_z's overstated, 1.55-1.75 (with the sliding bristles left out of the
+    // response and no band, StandstillCovariance::band, 1.17-1.44 for F and 0.81-0.93 for M_z)
+    { "parked after spinning in place, auto, 1 kHz", BrushModelKind::Auto, 1000.0, 0.0, 0.0, 300, 0.4, 0.2, false, 0.5,
+      0.8 },
   };
   const auto noise = [](bool uniform_robot) {
     Eigen::Matrix<double, 6, 1> sd;
@@ -716,6 +726,15 @@ TEST(EstimateCovariance, StandstillRandomWalkAgainstMonteCarlo)
           in.twist_covariance = TwistCovariance::Zero();  // exact: the state at the stop is known
           ASSERT_NE(e.update(in), nullptr);
         }
+      for (int k = 0; k < static_cast<int>(c.spun * c.rate); ++k, t += dt)
+      {
+        EstimatorInput in;
+        in.stamp = t;
+        in.omega = Eigen::Vector3d(0.0, 0.0, 5.0);
+        in.body_heading = c.body_heading;
+        in.twist_covariance = TwistCovariance::Zero();
+        ASSERT_NE(e.update(in), nullptr);
+      }
       for (int k = 0; k < c.messages; ++k, t += dt)
       {
         Eigen::Matrix<double, 5, 1> z;
@@ -756,18 +775,28 @@ TEST(EstimateCovariance, StandstillRandomWalkAgainstMonteCarlo)
       EXPECT_GT(undefined, kDraws * c.messages / 2) << c.name;  // spinning, from the first tens of milliseconds on
       continue;
     }
-    EXPECT_EQ(undefined, 0) << c.name;
+    // (after spinning in place most bristles slide at first: no covariance until enough have re-adhered)
+    if (c.spun == 0.0)
+    {
+      EXPECT_EQ(undefined, 0) << c.name;
+    }
     EXPECT_EQ(approximate, walks) << c.name;  // always (StandstillCovariance: what it leaves out)
     double worst = 1.0;
+    int compared = 0;
     for (int i = 0; i < 3; ++i)
     {
+      if (c.spun > 0.0 && F[i].size() < static_cast<std::size_t>(kDraws))
+        continue;  // not every realisation walked here
+      ++compared;
       ASSERT_EQ(F[i].size(), static_cast<std::size_t>(kDraws));
       const Eigen::Matrix3d mc = sampleCovariance(F[i]);
       for (int j = 0; j < 3; ++j)
       {
         const double ratio = std::sqrt(walked[i](j, j) / mc(j, j));
         worst = std::abs(ratio - 1.0) > std::abs(worst - 1.0) ? ratio : worst;
-        EXPECT_NEAR(ratio, 1.0, c.tolerance) << c.name << ", message " << checks[i] << ", component " << j
+        EXPECT_GE(ratio, 1.0 - c.tolerance) << c.name << ", message " << checks[i] << ", component " << j;
+        EXPECT_LE(ratio, 1.0 + (c.above > 0.0 ? c.above : c.tolerance))
+            << c.name << ", message " << checks[i] << ", component " << j
                                              << ": walked " << std::sqrt(walked[i](j, j)) << ", Monte Carlo "
                                              << std::sqrt(mc(j, j));
       }
@@ -778,16 +807,14 @@ TEST(EstimateCovariance, StandstillRandomWalkAgainstMonteCarlo)
           const double r_mc = mc(j, l) / std::sqrt(mc(j, j) * mc(l, l));
           std::printf("  %s, message %d: correlation %d%d walked %.2f, Monte Carlo %.2f\n", c.name, checks[i], j, l,
                       r_walked, r_mc);
-          if (c.skid == 0.0)
-          {
-            EXPECT_NEAR(r_walked, r_mc, c.tolerance) << c.name << ", message " << checks[i] << ", correlation " << j << l;
-          }
+          EXPECT_NEAR(r_walked, r_mc, c.tolerance) << c.name << ", message " << checks[i] << ", correlation " << j << l;
         }
       std::printf("  %s, message %d: walked / Monte Carlo standard deviations %.2f %.2f %.2f\n", c.name, checks[i],
                   std::sqrt(walked[i](0, 0) / mc(0, 0)), std::sqrt(walked[i](1, 1) / mc(1, 1)),
                   std::sqrt(walked[i](2, 2) / mc(2, 2)));
     }
-    std::printf("%s: worst walked / Monte Carlo standard deviation %.3f\n", c.name, worst);
+    EXPECT_GE(compared, 1) << c.name;
+    std::printf("%s: worst walked / Monte Carlo standard deviation %.3f (%d checks)\n", c.name, worst, compared);
   }
 }
 

@@ -687,14 +687,14 @@ void BrushAuto::visitBristles(const BristleVisitor& visit) const
     steady_.visitBristles(last_slips_, visit);
 }
 
-bool BrushAuto::adhesionResponse(AdhesionResponse& response, long& work) const
+bool BrushAuto::adhesionResponse(AdhesionResponse& response, long& work, double band) const
 {
   // the lattice the next update advances without rolling: the one under way (answering, or rolling beside the steady
   // answer on probation) or one still undeformed (nothing rolled since a reset); not one that a warm start is about to
   // fill with the steady state of the last rolling inputs
   if (!(in_transient_ || probation_ || !have_rolling_))
     return false;
-  return transient_->adhesionResponse(response, work);
+  return transient_->adhesionResponse(response, work, band);
 }
 
 }  // namespace sphere_contact_estimator

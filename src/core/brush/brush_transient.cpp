@@ -1104,13 +1104,17 @@ void BrushTransient::gather(LatticeSums& g) const
   }
 }
 
-bool BrushTransient::adhesionResponse(AdhesionResponse& response, long& work) const
+bool BrushTransient::adhesionResponse(AdhesionResponse& response, long& work, double band) const
 {
   // F = k sum u dA, M_z = k sum (x_x u_y - x_y u_x) dA (sums()); an adhering bristle's u' = w with
-  // dw / d(V_s,x, V_s,y, omega_z) = [[-1, 0, x_y], [0, -1, -x_x]] (eq. 1, drive()); dA as the sums weigh the cells
+  // dw / d(V_s,x, V_s,y, omega_z) = [[-1, 0, x_y], [0, -1, -x_x]] = -B^T, B = [I; (-x_y, x_x)] (eq. 1, drive()), so that
+  // it moves (F_x, F_y, M_z) by -B B^T; dA as the sums weigh the cells. One held by its bound (sliding, or adhering
+  // within `band` of it) moves only along it, by the drive's part across its normal n = u / |u| (eq. 4b on the bound):
+  // -B (I - n n^T) B^T = -B B^T + c c^T with c = B n.
   const FrictionCap cap(p_);
   double load = 0.0, S0 = 0.0, S2 = 0.0;
   Eigen::Vector2d S1 = Eigen::Vector2d::Zero(), F = Eigen::Vector2d::Zero();
+  Eigen::Matrix3d held = Eigen::Matrix3d::Zero();  // sum of c c^T
   // the roll's share, per metre along each direction e_j: the adhering field moves with the roots, its moment by
   // e_j x F (a sliding bristle stays on the bound the patch's pressure sets: its force stays put); and the bristles
   // within a spacing of the rim each leave with the chance (e_j . n)+ / h, taking (u, x x u) with them
@@ -1122,12 +1126,12 @@ bool BrushTransient::adhesionResponse(AdhesionResponse& response, long& work) co
     e_x[j] = AdhesionResponse::directions()[j].x();
     e_y[j] = AdhesionResponse::directions()[j].y();
   }
-  const double band = p_.a - h_;
+  const double rim_band = p_.a - h_, mu_over_k = p_.mu / p_.k;
   long rim = 0;  // points in the band, each about 10 units more (callgrind: about 470 instructions, 32 directions)
   forEachBristle([&](const Eigen::Vector2d& x, const Eigen::Vector2d& u, bool sliding) {
     const double r2 = x.squaredNorm();
     load += cap.qz(r2);
-    if (r2 > band * band)
+    if (r2 > rim_band * rim_band)
     {
       ++rim;
       const double m = x.x() * u.y() - x.y() * u.x();
@@ -1140,12 +1144,21 @@ bool BrushTransient::adhesionResponse(AdhesionResponse& response, long& work) co
         lost_m[j] += out * m;
       }
     }
-    if (sliding)
-      return;
+    if (!sliding)
+      F += u;  // (the roll moves the adhering field with the roots)
+    const double un = u.norm();
+    if (sliding || (band > 0.0 && un > mu_over_k * cap.qz(r2) - band))
+    {
+      // held by its bound (the noise's reflected walk reaches it within the band, StandstillCovariance::band)
+      if (!(un > 0.0))
+        return;  // at the rim, with no bound: nothing moves it
+      const Eigen::Vector2d n = u / un;
+      const Eigen::Vector3d c(n.x(), n.y(), x.x() * n.y() - x.y() * n.x());
+      held += c * c.transpose();
+    }
     S0 += 1.0;
     S1 += x;
     S2 += r2;
-    F += u;
   });
   work = sumsWork() + rim * 10;
   response = AdhesionResponse{};
@@ -1155,7 +1168,7 @@ bool BrushTransient::adhesionResponse(AdhesionResponse& response, long& work) co
   response.drive << -S0, 0.0, S1.y(),  //
       0.0, -S0, -S1.x(),               //
       S1.y(), -S1.x(), -S2;
-  response.drive *= kdA;
+  response.drive = kdA * (response.drive + held);
   for (int j = 0; j < kN; ++j)
     response.roll.col(j) = kdA * (Eigen::Vector3d(0.0, 0.0, e_x[j] * F.y() - e_y[j] * F.x()) -
                                   Eigen::Vector3d(lost_x[j], lost_y[j], lost_m[j]) / h_);

@@ -515,20 +515,20 @@ void ContactEstimator::walkBrushCovariance(const EstimatorInput& in, ContactEsti
     undefined();
     return;
   }
+  const BrushParameters& p = brush_->parameters();
+  const Eigen::Matrix<double, 5, 5> G = driveJacobian(settings_.rolling_radius, heading_);
+  const Eigen::Matrix<double, 5, 5> drive = G * usedTwistCovariance(in.twist_covariance) * G.transpose();
   AdhesionResponse response;
   long work = 0;
-  if (!brush_->adhesionResponse(response, work))
+  if (!brush_->adhesionResponse(response, work, walk_.known() ? walk_.band(drive, o.dt, p.a) : 0.0))
   {
     undefined();  // no state that integrates the noise (linear, steady)
     walk_.lose();
     return;
   }
   o.work += work;
-  const BrushParameters& p = brush_->parameters();
   const double limit = p.mu * p.F_z;
-  const Eigen::Matrix<double, 5, 5> G = driveJacobian(settings_.rolling_radius, heading_);
-  const Eigen::Matrix<double, 5, 5> S = usedTwistCovariance(in.twist_covariance);
-  walk_.advance(response, G * S * G.transpose(), o.dt, Eigen::Vector3d(limit, limit, limit * p.a));
+  walk_.advance(response, drive, o.dt, Eigen::Vector3d(limit, limit, limit * p.a), p.a);
   publishWalk(o);
 }
 

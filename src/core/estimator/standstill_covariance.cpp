@@ -36,13 +36,27 @@ void StandstillCovariance::restart(const Eigen::Matrix3d& start)
 {
   sigma_ = start;
   known_ = true;
+  pushed2_ = 0.0;
+}
+
+double StandstillCovariance::push2(const Eigen::Matrix<double, 5, 5>& drive, double dt, double a)
+{
+  // along a normal n, Var(n . dw) dt^2 with dw = -dV_s - d omega_z J x: V_s's variance averaged over the normal's
+  // directions, and omega_z's times (J x . n)^2 averaged over the patch (a^2 / 4)
+  return dt * dt * (0.5 * (drive(0, 0) + drive(1, 1)) + 0.25 * a * a * drive(2, 2));
+}
+
+double StandstillCovariance::band(const Eigen::Matrix<double, 5, 5>& drive, double dt, double a) const
+{
+  return kBand * std::sqrt(pushed2_ + push2(drive, dt, a));
 }
 
 void StandstillCovariance::advance(const AdhesionResponse& response, const Eigen::Matrix<double, 5, 5>& drive,
-                                   double dt, const Eigen::Vector3d& limits)
+                                   double dt, const Eigen::Vector3d& limits, double a)
 {
   if (!known_ || !(dt > 0.0))
     return;
+  pushed2_ += push2(drive, dt, a);
   // the linear part, dt R w with w = (V_s, omega_z)
   const Eigen::Matrix3d A = dt * paper_frame::toRos(response.drive);  // (paper to ROS: the forces and the drive alike)
   Eigen::Matrix3d step = A * drive.topLeftCorner<3, 3>() * A.transpose();

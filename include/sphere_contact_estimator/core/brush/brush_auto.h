@@ -75,7 +75,7 @@ public:
   void visitBristles(const BristleVisitor& visit) const override;
   /// The lattice's that the next update advances at standstill: the one under way, or an undeformed one after a reset;
   /// false where that update would warm-start it from the steady state (after steady answers, off probation).
-  bool adhesionResponse(AdhesionResponse& response, long& work) const override;
+  bool adhesionResponse(AdhesionResponse& response, long& work, double band) const override;
   /// Estimated cost of all updates so far [ns] (per-evaluation costs measured in docs/benchmarks.md).
   double cost() const { return cost_; }
   /// The resolution its transient model runs at now.

@@ -21,8 +21,9 @@ namespace sphere_contact_estimator
 /// How the bristles hold the noise of a robot that stands (BrushModel::adhesionResponse), paper frame.
 struct AdhesionResponse
 {
-  /// d(F_x, F_y, M_z)/dt per unit of (V_s,x, V_s,y, omega_z), summed over the adhering bristles with the weights of the
-  /// force sums
+  /// d(F_x, F_y, M_z)/dt per unit of (V_s,x, V_s,y, omega_z), summed over the bristles with the weights of the force
+  /// sums: an adhering one moves with the drive, one held by its bound (sliding, or within the band of it) only along
+  /// the bound
   Eigen::Matrix3d drive = Eigen::Matrix3d::Zero();
   static constexpr int kDirections = 32;
   /// The unit vectors at angles 2 pi j / kDirections (computed once).
@@ -107,11 +108,14 @@ public:
   using BristleVisitor = std::function<void(const Eigen::Vector2d& x, const Eigen::Vector2d& u, bool sliding)>;
   virtual void visitBristles(const BristleVisitor& /*visit*/) const {}
   /// How the bristle state integrates the drive while the patch does not roll (eq. 1 at V_r = 0: an adhering bristle's
-  /// u' = w = -V_s - A_omega_z x, a sliding one stays on its bound), and what a small roll of the roots (V_r from the
-  /// noise) does to it (AdhesionResponse); `work` what that pass costs (BrushForces::work units). An input error of one
-  /// message stays in the state, so at standstill the forces' covariance integrates the inputs' (StandstillCovariance).
+  /// u' = w = -V_s - A_omega_z x, a sliding one moves along its bound by w's part across its normal, eq. 4b), and what a
+  /// small roll of the roots (V_r from the noise) does to it (AdhesionResponse); `work` what that pass costs
+  /// (BrushForces::work units). An input error of one message stays in the state, so at standstill the forces'
+  /// covariance integrates the inputs' (StandstillCovariance). `band` [m]: an adhering bristle closer than this to its
+  /// bound counts as held by it, moving only along it as a sliding one (the noise's reflected walk,
+  /// StandstillCovariance::band); 0: only the sliding ones.
   /// False where there is no such state (linear, steady: zero forces at standstill).
-  virtual bool adhesionResponse(AdhesionResponse& /*response*/, long& /*work*/) const { return false; }
+  virtual bool adhesionResponse(AdhesionResponse& /*response*/, long& /*work*/, double /*band*/) const { return false; }
 
   const BrushParameters& parameters() const { return p_; }
 

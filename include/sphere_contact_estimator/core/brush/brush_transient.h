@@ -106,7 +106,7 @@ public:
   {
     forEachBristle(visit);
   }
-  bool adhesionResponse(AdhesionResponse& response, long& work) const override;
+  bool adhesionResponse(AdhesionResponse& response, long& work, double band) const override;
 
   /// Forces of the current bristle state, without advancing: the last update's answer (without its flags and work)
   /// while nothing changed the state since, else a pass of the sums (forcesWork).
