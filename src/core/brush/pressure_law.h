@@ -84,6 +84,14 @@ public:
     return 0.0;
   }
 
+  /// d^2f/dt^2 (0 beyond the rim; -1 / (4 t^{3/2}) for the Hertzian law, 0 for the others).
+  double shapeCurvature(double t) const
+  {
+    if (t <= 0.0 || kind_ != PressureDistribution::Hertzian)
+      return 0.0;
+    return -0.25 / (t * std::sqrt(t));
+  }
+
   /// The bound vanishes at the rim (m > 0): a bristle entering there can start sliding at once.
   bool vanishesAtRim() const { return squaredExponent() > 0; }
   /// The bound grows without limit at the rim (m = 1): a bristle always adheres as it enters.

@@ -91,7 +91,7 @@ bool BristleAdvance::coulombSlideFrozen(BristleState& s, const Eigen::Vector2d& 
   const double b0 = c_ * pressure_.shape(t.t0), b1 = c_ * pressure_.shape(t_end);
   // along the path: |t'| <= T1, t'' = 2 t2; f' and |f''| are largest at t_lo (f = t^{m/2}); |w| within dw of |w_m|
   const double T1 = std::abs(t.t1) + 2.0 * std::abs(t.t2) * span;
-  const double f1 = pressure_.shapeSlope(t_lo), f2 = m_ == 1 ? 0.25 / (t_lo * std::sqrt(t_lo)) : 0.0;
+  const double f1 = pressure_.shapeSlope(t_lo), f2 = std::abs(pressure_.shapeCurvature(t_lo));
   const double B1 = c_ * f1 * T1, B2 = c_ * (f2 * T1 * T1 + 2.0 * f1 * std::abs(t.t2));  // |b'|, |b''|
   const double W_lo = wn - dw, W_hi = wn + dw, Wd = w_dot_norm_;
   const double L = W_hi / b_lo;                                            // lambda
