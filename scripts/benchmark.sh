@@ -20,12 +20,15 @@ record_scenario() {
     output_csv:="$OUT/$3_live.csv" > "$OUT/$3_record.log" 2>&1 || true
 }
 install_deps
-build bench_models model_accuracy node_benchmark contact_estimator_node bag_analyze replay_benchmark calibration_accuracy
+build bench_models model_accuracy node_benchmark contact_estimator_node bag_analyze replay_benchmark calibration_accuracy \
+  work_units
 mkdir -p "$OUT"
 BIN="$WS/devel/lib/$PKG"
 log "timing (Google Benchmark, 3 repetitions, medians)"
 "$BIN/bench_models" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true --benchmark_min_time=0.2 \
   --benchmark_format=console --benchmark_out_format=json --benchmark_out="$OUT/bench.json" 2>&1 | grep -v WARNING
+log "time per counted unit of work: random robots, every model and law, with and without tilt (about a minute)"
+taskset -c 0 "$BIN/work_units" 1 60 > "$OUT/work_units.json"
 log "accuracy on the operating points"
 "$BIN/model_accuracy" > "$OUT/accuracy.json"
 log "the parked robot's random-walk covariance against Monte Carlo over random robots (docs/uncertainty.md; about 10 minutes)"
@@ -77,5 +80,5 @@ log "100 random robots (about 50 minutes)"
 /usr/bin/python3 "$REPO/scripts/benchmark_report.py" --bench "$OUT/bench.json" --accuracy "$OUT/accuracy.json" \
   --node "$OUT/node.json" --bag "$OUT/bag.json" --default-brush-model "$(default_brush_model)" \
   --replay "$OUT/replay.json" "$OUT/replay_tf.json" "$OUT/writers.json" --replay-streams "$OUT/replay_streams.json" --streams "$OUT/streams.json" --hostile "$OUT/hostile.json" --sweep "$OUT/sweep.json" --replay-profile "$REPO/bench/replay_profile.md" \
-  --calibration "$OUT/calibration.json" \
+  --calibration "$OUT/calibration.json" --work-units "$OUT/work_units.json" \
   --docs "$REPO/docs"
