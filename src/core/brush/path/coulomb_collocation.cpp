@@ -15,10 +15,16 @@ namespace sphere_contact_estimator::path
 namespace
 {
 constexpr double kHalfPi = 1.5707963267948966;
-// A step: three points and the Newton iterations, 2700-3100 instructions (callgrind), in PathIntegrals::work units of
-// about 10 ns: 40 made a steady message within the work budget take 13.5-15 ns a unit at random robots' heavy spin
-// (scripts/stream_sweep.py, seed 1030: 1.3-1.4 ms at 94 000 units), the lattice's units at most 11.5.
-constexpr long kStepWork = 60;
+// A step's work in PathIntegrals::work units of about 10 ns (50 instructions): its own arithmetic (the stages' guess,
+// the estimate, the rotations; about 1 950 instructions, callgrind), each point along the path it evaluates (kPointWork:
+// the travel map, the position, the drive and the bound, about 170) and each Newton iteration (kNewtonWork: about 210).
+// A flat 60 a step (three points and the Newton iterations, 2 700-3 100 instructions along the recorded streams, 3.4
+// points and 1.9 iterations a step) had heavy spin take up to 12 ns a unit (random robots at |phi a| 0.5-1.3, the
+// steady model cut short by the work budget: 1.2 ms at 10^5 units; a stream's first message 1.03 ms): there a step
+// locates re-adhesions by regula falsi along its cubic, 9 points and 3.7 iterations a step, 5 500 instructions.
+constexpr long kStepWork = 40;
+constexpr long kPointWork = 4;
+constexpr long kNewtonWork = 4;
 constexpr int kMaxSteps = 2000;      // attempted steps; beyond, the general solver takes the piece over
 constexpr int kMaxNewton = 7;
 constexpr double kNewtonStop = 1e-5;  // the last Newton correction on the stages' t
@@ -171,6 +177,7 @@ public:
 private:
   Point at(double s) const
   {
+    ctx_.out.work += kPointWork;
     Point n;
     n.s = s;
     double g_s;
@@ -340,6 +347,7 @@ bool Collocation::collocate(const Riccati* R, double step, const double* guess, 
       hA[i][j] = step * kRadau.a[i][j];
   for (int it = 0; it < kMaxNewton; ++it)
   {
+    ctx_.out.work += kNewtonWork;
     double F[3], J[3];
     for (int i = 0; i < 3; ++i)
     {
