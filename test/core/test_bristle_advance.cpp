@@ -251,6 +251,55 @@ TEST(BristleAdvance, StiffStepErrorBoundsTheErrorOverTenMillisecondMessages)
   EXPECT_EQ(c.over, 0);
 }
 
+TEST(BristleAdvance, AnOnsetLocatedIsCountedAndOneTheBudgetCannotPayForIsNot)
+{
+  // An adhering bristle that reaches its bound within the message: locating its onset isolates a quartic's root, about
+  // a step's work, which advance() counts with the steps (the rigid law's sliding then takes none: the one count is
+  // the onset's, and under the rigid law the re-adhesion's where the path enters G). Allowed no step (the work budget
+  // spent), it locates nothing: the adhering closed form over the message put back on the bound, the error two bounds,
+  // cut. Seeded random bristles that reach their bound (an onset found by the unbudgeted advance), every pressure law
+  // and both sliding laws; the budgeted one must stay within its error of the unbudgeted one.
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int located = 0;
+  for (const SlidingLaw sliding : { SlidingLaw::Coulomb, SlidingLaw::Rigid })
+    for (const PressureDistribution law :
+         { PressureDistribution::Parabolic, PressureDistribution::Hertzian, PressureDistribution::Uniform })
+    {
+      BrushParameters p = EstimatorSettings{}.brushParameters();
+      p.sliding_law = sliding;
+      p.pressure = law;
+      for (int n = 0; n < 400; ++n)
+      {
+        ContactKinematics kin;
+        const double heading = 2.0 * M_PI * unit(rng), slide_heading = 2.0 * M_PI * unit(rng);
+        kin.V_r = (0.1 + 1.9 * unit(rng)) * Eigen::Vector2d(std::cos(heading), std::sin(heading));
+        kin.V_s = 0.3 * unit(rng) * Eigen::Vector2d(std::cos(slide_heading), std::sin(slide_heading));
+        kin.omega_z = 30.0 * (unit(rng) - 0.5);
+        const lattice::BristleAdvance advance(p, kin, 1e-9);
+        const double r = 0.9 * p.a * std::sqrt(unit(rng)), where = 2.0 * M_PI * unit(rng);
+        const Eigen::Vector2d x0 = r * Eigen::Vector2d(std::cos(where), std::sin(where));
+        const double span = 1e-2;
+        if ((x0 - span * kin.V_r).norm() >= p.a)
+          continue;
+        lattice::BristleState whole;  // undeformed, adhering (as the lattice starts a bristle)
+        whole.slip_travel = INFINITY;
+        lattice::BristleState cut = whole;
+        const int steps = advance.advance(whole, x0, span, false, 1000);
+        if (!whole.sliding)
+          continue;  // adhering at the end: no onset, or one it re-adhered after
+        ++located;
+        EXPECT_GE(steps, 1) << "case " << n << ": an onset located without its work counted";
+        EXPECT_EQ(advance.advance(cut, x0, span, false, 0), 0) << "case " << n;
+        EXPECT_TRUE(cut.cut) << "case " << n;
+        const double b_end = advance.bound(x0 - span * kin.V_r);
+        EXPECT_LE(cut.u.norm(), b_end * (1.0 + 1e-12)) << "case " << n;
+        EXPECT_LE((cut.u - whole.u).norm(), cut.step_error + whole.step_error + 1e-15) << "case " << n;
+      }
+    }
+  EXPECT_GE(located, 300);
+}
+
 TEST(BristleAdvance, AdhereThroughIsTheAdheringAdvanceWhereItClaimsNoOnset)
 {
   // The lattice's cheap path for an adhering bristle (BristleAdvance::adhereThrough) against the full advance with its

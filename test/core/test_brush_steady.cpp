@@ -428,7 +428,10 @@ TEST(BrushSteady, FindsTheReAdhesionRegionAroundThePole)
   ASSERT_GT(f.phi * f.phi, 4.0);
   const double y_p = f.pole().imag(), half = 2.0 * std::abs(f.sigma.imag()) / (std::abs(f.phi) * std::sqrt(f.phi * f.phi - 4.0));
   double theta[16];
-  const int n = structureBreakpoints(f, theta, 16);
+  StructureSearch search;
+  const int n = structureBreakpoints(f, theta, 16, search);
+  EXPECT_FALSE(search.cut);
+  EXPECT_GT(search.work, 0);
   ASSERT_EQ(n, 3);  // the extent's two ends and the pole's path between them
   EXPECT_NEAR(std::sin(theta[0]), y_p - half, 1e-10);
   EXPECT_NEAR(std::sin(theta[1]), y_p, 1e-12);
@@ -731,6 +734,62 @@ TEST(BrushSteady, WorkPerEvaluationIsBounded)
   BrushSteady::Stats loose_stats;
   const BrushForces loose = BrushSteady(p).evaluate(sigma, phi, phi_gamma, phi_psi, 0.2, &loose_stats);
   EXPECT_LE(forceDistance(f, loose, p), f.error_estimate + loose.error_estimate);
+}
+
+// Under the rigid law G's component around a front-half pole is found across the paths by searches that evaluate a
+// hundred paths or so; on tilted (curved) paths under the Hertzian pressure each is a Taylor series of degree 20 or
+// more whose roots are isolated, and uncounted they had taken 0.3-0.8 ms of a message (bench/work_units.cpp). Counted
+// (kRootWork), and within their work: unlimited, the three breakpoints to 1e-12; cut short, what was found is among
+// them (within the bracket it reports), and the work within the limit and one path's polynomials. Within the node's
+// default budget the evaluation, search included, stays within it and its estimate of the converged answer.
+TEST(BrushSteady, TheStructureSearchIsCountedAndBounded)
+{
+  BrushParameters p;
+  p.a = 0.0148;
+  p.k = 5.46e7;
+  p.F_z = 63.5;
+  p.mu = 1.04;
+  p.pressure = PressureDistribution::Hertzian;
+  p.tilt = true;
+  p.sliding_law = SlidingLaw::Rigid;
+  const Eigen::Vector2d sigma(-0.0815, 0.0864);
+  const double phi = -0.959 / p.a, phi_gamma = 0.9 * phi, phi_psi = 0.1 * phi;
+  BristleField f;
+  ASSERT_TRUE(BrushSteady(p).field(sigma, phi, phi_gamma, phi_psi, f));
+  double full[16], theta_p = 0.0;
+  StructureSearch whole;
+  const int n = structureBreakpoints(f, full, 16, whole);
+  ASSERT_EQ(n, 3);  // the component's two ends and the pole's path between them
+  EXPECT_FALSE(whole.cut);
+  EXPECT_LE(whole.bracket, 1e-12);
+  ASSERT_TRUE(polePath(f, theta_p));
+  long one = 0;  // one path's polynomials
+  reAdhesionCount(f, BristlePath::across(f, theta_p), &one);
+  EXPECT_GT(whole.work, 20 * one);
+  for (const long cap : { 2000L, 20000L })
+  {
+    StructureSearch search;
+    search.max_work = cap;
+    double theta[16];
+    const int m = structureBreakpoints(f, theta, 16, search);
+    EXPECT_TRUE(search.cut) << cap;
+    EXPECT_LE(search.work, cap + 2 * one) << cap;
+    EXPECT_LT(m, n) << cap;
+    for (int i = 0; i < m; ++i)
+    {
+      double nearest = INFINITY;
+      for (int j = 0; j < n; ++j)
+        nearest = std::min(nearest, std::abs(theta[i] - full[j]));
+      EXPECT_LE(nearest, search.bracket + 1e-12) << cap << " breakpoint " << i;
+    }
+  }
+  const long budget = 100000;  // config/contact_estimator.yaml's work_budget
+  BrushSteady::Stats stats;
+  const BrushForces cut = BrushSteady(p).evaluate(sigma, phi, phi_gamma, phi_psi, 0.0025, &stats, budget);
+  const BrushForces converged = BrushSteady(p).evaluate(sigma, phi, phi_gamma, phi_psi, 0.0025);
+  EXPECT_LE(stats.work, budget + 64 * 32 * 32);  // (one path may overrun it by its segments' series)
+  EXPECT_FALSE(converged.flags & brush_flags::kAccuracyNotMet);
+  EXPECT_LE(forceDistance(cut, converged, p), cut.error_estimate + converged.error_estimate);
 }
 
 // Under eq. (4b) too: a huge spin with stiff bristles under a light load (the drive 1e3-1e4 times the bound's growth,

@@ -1276,6 +1276,85 @@ TEST(BrushTransient, SlidingStepsTheBudgetCannotPayForAreFlagged)
   EXPECT_FALSE(next.flags & brush_flags::kSubstepsTruncated);
 }
 
+TEST(BrushTransient, OnsetsAreCountedAndTheBudgetBoundsThem)
+{
+  // The first update of a transient model starts every bristle undeformed where it stands; rolling 10 ms at 1.9 m/s
+  // with large slips under the uniform pressure (whose bound does not vanish at the rim) nearly every one reaches its
+  // bound, each onset a quartic's root isolated (about a step's instructions: bench/work_units.cpp found such an update
+  // at 10.5 ns a unit, 1.05 ms within the budget, while they went uncounted). Each counts as a step: under the rigid law,
+  // whose sliding takes no steps, the work is at least the least update's and a step for every bristle left sliding
+  // (each began to slide at an isolated onset). Within a budget that cannot pay for them, under either law, the onsets
+  // it cannot pay for are not located: the rest of each such path in one return mapping, its error two bounds, the
+  // update flagged and within its estimate of the uncut one.
+  for (SlidingLaw law : kSlidingLaws)
+  {
+    SCOPED_TRACE(toString(law));
+    BrushParameters p;
+    p.a = 0.025;
+    p.k = 4.6e8;
+    p.F_z = 26.6;
+    p.mu = 0.43;
+    p.pressure = PressureDistribution::Uniform;
+    p.resolution = 32;
+    p.sliding_law = law;
+    const ContactKinematics k = ContactKinematics::fromSlips({ 0.11, 0.16 }, 0.42 / p.a, 0.9, 1.94);
+    BrushTransient whole_model(p), cut_model(p);
+    const BrushForces whole = whole_model.update(k, 0.01);
+    int inside = 0;
+    whole_model.forEachBristle([&](const Eigen::Vector2d&, const Eigen::Vector2d&, bool) { ++inside; });
+    const long least = BrushTransient::leastUpdateWork(p.resolution, false);
+    const double sliding = whole.sliding_fraction * inside;
+    ASSERT_GT(whole.sliding_fraction, 0.5);
+    std::printf("%s law: the first update %ld units, the least %ld, %.0f bristles sliding\n", toString(law), whole.work,
+                least, sliding);
+    if (law == SlidingLaw::Rigid)
+    {
+      EXPECT_GE(whole.work, least + static_cast<long>(sliding) * BrushTransient::kStepWork);
+    }
+    EXPECT_FALSE(whole.flags & brush_flags::kSubstepsTruncated);
+    const long budget = least + inside / 8 * BrushTransient::kStepWork;  // for an eighth of them
+    cut_model.setWorkBudget(budget);
+    const BrushForces cut = cut_model.update(k, 0.01);
+    EXPECT_TRUE(cut.flags & brush_flags::kSubstepsTruncated);
+    EXPECT_LE(cut.work, budget + BrushTransient::kStepWork);
+    EXPECT_LE(cut.max_utilisation, 1.0 + 1e-12);  // every return mapping back on its bound
+    EXPECT_GT(forceDistance(cut, whole, p), 0.0) << "the budget cut nothing";
+    EXPECT_LE(forceDistance(cut, whole, p), cut.error_estimate + whole.error_estimate);
+  }
+}
+
+TEST(BrushTransient, TheStreakBoundsSearchIsCountedAndBounded)
+{
+  // Under the rigid law each update bounds the re-adhering streaks no row may cross (streakBound): it locates G's
+  // component around a front-half pole across the paths, on tilted paths Taylor series whose roots are isolated, which
+  // had gone uncounted (0.3 ms of an update at resolution 16: bench/work_units.cpp). Counted, to a precision that
+  // serves against three spacings; where the budget leaves too little for it, the most that as many bands as it looks
+  // for could hold instead, in the estimate. The robot of the steady solver's test of the same search, settled.
+  BrushParameters p;
+  p.a = 0.0148;
+  p.k = 5.46e7;
+  p.F_z = 63.5;
+  p.mu = 1.04;
+  p.pressure = PressureDistribution::Hertzian;
+  p.tilt = true;
+  p.sliding_law = SlidingLaw::Rigid;
+  p.resolution = 16;
+  const ContactKinematics k = ContactKinematics::fromSlips({ -0.0815, 0.0864 }, -0.959 / p.a, 0.9, 1.0);
+  BrushTransient model(p);
+  for (int m = 0; m < 8; ++m)
+    model.update(k, 0.02);
+  BrushTransient whole_model = model, cut_model = model;
+  const BrushForces whole = whole_model.update(k, 0.002);
+  const long least = BrushTransient::leastUpdateWork(p.resolution, true);
+  const double most = 8 * 2.0 * peakFactor(p.pressure) * 3.0 * 2.0 / p.resolution;  // 8 bands, each 3 spacings (2a / n)
+  EXPECT_GT(whole.work, least + 1000) << "the search counted nothing";
+  EXPECT_LT(whole.error_estimate, most);
+  cut_model.setWorkBudget(least);
+  const BrushForces cut = cut_model.update(k, 0.002);
+  EXPECT_GE(cut.error_estimate, most);
+  EXPECT_LE(cut.work, least + 1000);  // (the search's first path: about 500 units)
+}
+
 TEST(BrushTransient, ABudgetThatFallsShortIsSharedByEveryBristleThatTakesSubsteps)
 {
   // With tilt, bristle by bristle (advanceArcs): where the budget cannot pay for every substep of the bristles that

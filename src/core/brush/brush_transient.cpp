@@ -153,6 +153,7 @@ void BrushTransient::renew(const BrushParameters& parameters)
   work_ = 0;
   last_steps_ = 0;
   last_travel_ = 0.0;
+  streak_work_ = 0;
   streak_estimate_ = 0.0;
   last_kin_ = ContactKinematics{};
   *rows_ = TransientRows{};
@@ -319,7 +320,7 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, const Slips& sl
       // fewer substeps than accuracy wants where the work budget cannot pay for them (a fixed lattice, or auto's at its
       // coarsest): the answer then makes no claim beyond the friction circle's, nor do the next ones (suspect_)
       const long point_work = static_cast<long>(w_) * w_ * kPointWork;
-      const long affordable = (work_budget_ - sumsWork()) / point_work;  // and the sums
+      const long affordable = (work_budget_ - sumsWork() - streak_work_) / point_work;  // and the sums, the streaks
       if (count > affordable)
       {
         count = static_cast<int>(std::max(1L, affordable));
@@ -349,7 +350,9 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, const Slips& sl
                         work_budget_ - work_ - sumsWork());
   // the rows' correction holds the streaks once every bristle in the patch entered under the inputs it is of
   const bool corrected = held_travel_ >= 2.0 * p_.a && rows_->of(slips, p_);
-  streak_estimate_ = corrected ? 0.0 : streakBound(slips);
+  const long before_streaks = work_;
+  streak_estimate_ = corrected ? 0.0 : streakBound(slips, std::max(0L, work_budget_ - work_ - sumsWork()), work_);
+  streak_work_ = work_ - before_streaks;
   double fixed = 0.0, spread = 0.0;
   const BrushForces g = sums(fixed, spread);
   // the spreads of the window (kWindowSpacings): the phase moves with the roots' displacement and, with tilt, their
@@ -423,11 +426,11 @@ long BrushTransient::predictWork(const ContactKinematics& kin, double dt) const
   {
     // the closed forms of every bristle, the sums, and the sliding steps
     return static_cast<long>(w_) * w_ * kBristleWork + sumsWork() +
-           static_cast<long>(predictSteps(kin, dt)) * kStepWork;
+           static_cast<long>(predictSteps(kin, dt)) * kStepWork + streak_work_;
   }
   if (stepping_ == TransientStepping::WholeStep)
-    return arcsWork(dt > 0.0 ? substeps(kin, dt) : 0, w_);
-  return substepsWork(dt > 0.0 ? substeps(kin, dt) : 0, w_);
+    return arcsWork(dt > 0.0 ? substeps(kin, dt) : 0, w_) + streak_work_;
+  return substepsWork(dt > 0.0 ? substeps(kin, dt) : 0, w_) + streak_work_;
 }
 
 long BrushTransient::arcsWork(int n, long w) const
@@ -447,15 +450,16 @@ long BrushTransient::predictFinerWork(const ContactKinematics& kin, double dt) c
   if (!p_.tilt && stepping_ == TransientStepping::WholeStep)
   {
     const long w = 2L * w_;  // (the finer window, windowWidth(2 n), is a little less)
-    return w * w * (kBristleWork + kSumWork) + static_cast<long>(kFinerSteps * predictSteps(kin, dt)) * kStepWork;
+    return w * w * (kBristleWork + kSumWork) + static_cast<long>(kFinerSteps * predictSteps(kin, dt)) * kStepWork +
+           streak_work_;
   }
   // substeps (tilt): the finer lattice's own count (about twice this one's: half the spacing) over its window, as
   // predictWork counts them (8 times this one's prediction was 1.7 times a 16's step at 8, 66 k units against 39 k: a
   // lattice the budget had cut to 8 never came back); stepped bristle by bristle, the share of them this one's took
   const int n = dt > 0.0 ? substepsAt(kin, dt, 0.5 * h_) : 0;
   if (stepping_ == TransientStepping::WholeStep)
-    return arcsWork(n, windowWidth(2 * p_.resolution));
-  return substepsWork(n, windowWidth(2 * p_.resolution));
+    return arcsWork(n, windowWidth(2 * p_.resolution)) + streak_work_;
+  return substepsWork(n, windowWidth(2 * p_.resolution)) + streak_work_;
 }
 
 bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
@@ -471,7 +475,7 @@ bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
   const lattice::BristleAdvance advance(p_, kin, timeTolerance());
   // the sliding steps within what the budget leaves after every bristle's closed forms and the sums; past it, each
   // bristle's remainder in one step (its error counted in the estimate)
-  long pool = work_budget_ - work_ - static_cast<long>(w_) * w_ * kBristleWork - sumsWork();
+  long pool = work_budget_ - work_ - static_cast<long>(w_) * w_ * kBristleWork - sumsWork() - streak_work_;
   bool enough = true;
   long steps = 0;
   const Eigen::Vector2d along = rowStep();
@@ -732,7 +736,7 @@ bool BrushTransient::advanceArcs(const ContactKinematics& kin, double dt, int co
       }
       work += kBristleWork;
     }
-  long pool = work_budget_ - work_ - sumsWork() - work;
+  long pool = work_budget_ - work_ - sumsWork() - streak_work_ - work;
   bool enough = true;
   const Coupling coupling(-kin.psi_dot, step);
   int level = count;  // the substeps of the coarse level whose coupling, motion and maps are kept
@@ -895,11 +899,14 @@ void BrushTransient::coulombStep(const ContactKinematics& kin, const FrictionCap
   sliding_[p] = r.sliding;
 }
 
-double BrushTransient::streakBound(const Slips& s) const
+double BrushTransient::streakBound(const Slips& s, long max_work, long& work) const
 {
   // A stretch of G (where sliding bristles re-adhere) narrower than a few lattice rows anchors a streak the
   // rows may all miss. Its force is bounded by |u - f w/|w|| <= 2 f over its width times the longest path
-  // (pi in units of a), the field's units: 2 pi width (q_z(0) / (F_z / pi a^2)) / pi of mu F_z.
+  // (pi in units of a), the field's units: 2 pi width (q_z(0) / (F_z / pi a^2)) / pi of mu F_z. The bands' ends are
+  // needed only against three spacings: to kStreakPrecision, each width taken within its brackets either way (wider
+  // where it counts); the search then counts less than half the work it takes to the steady solver's 1e-12 (a tilted
+  // Hertzian robot: 21 500 units against 50 500).
   if (p_.sliding_law == SlidingLaw::Coulomb)
     return 0.0;  // eq. (4b)'s field is continuous across the paths: no streaks of re-adhered bristles
   BristleField field;
@@ -909,12 +916,20 @@ double BrushTransient::streakBound(const Slips& s) const
   if (!makeBristleField(p_, { sigma.x(), sigma.y() }, s.phi, s.phi_gamma, s.phi_psi, field))
     return 0.0;
   double lo[8], hi[8], bound = 0.0;
-  const int n = reAdhesionBands(field, lo, hi, 8);
+  StructureSearch search;
+  search.precision = kStreakPrecision;
+  search.max_work = max_work;
+  const int n = reAdhesionBands(field, lo, hi, 8, search);
+  work += search.work;
+  if (search.cut)
+    return 8 * 2.0 * peakFactor(p_.pressure) * 3.0 * h_ / p_.a;  // the work spent before every band was found: the most
+                                                                 // that as many bands as it looks for could hold
+  const double slack = 2.0 * search.bracket;  // |d sin| <= |d theta| at either end
   for (int i = 0; i < n; ++i)
   {
     const double width = std::sin(hi[i]) - std::sin(lo[i]);  // in units of a
-    if (width * p_.a < 3.0 * h_)
-      bound += 2.0 * peakFactor(p_.pressure) * width;
+    if ((width - slack) * p_.a < 3.0 * h_)
+      bound += 2.0 * peakFactor(p_.pressure) * (width + slack);
   }
   return bound;
 }

@@ -42,14 +42,16 @@ constexpr double kQuietPairPathShare = 0.5;
 constexpr double kQuietPair = 0.05;
 constexpr double kLooseTolerance = 1e-3;
 
-// A sign change of a continuous g between a (g >= 0) and b (g < 0), by the Illinois variant of regula falsi.
-template <class G>
-double solveSignChange(const G& g, double a, double b)
+// A sign change of a continuous g between a (g >= 0) and b (g < 0), by the Illinois variant of regula falsi (fa, fb: g
+// there, the caller's; before each evaluation stop(bracket, next) may end it: `bracket` is raised to the one it left).
+template <class G, class Stop>
+double solveSignChange(const G& g, double a, double fa, double b, double fb, const Stop& stop, double& bracket)
 {
-  double fa = g(a), fb = g(b);
   for (int it = 0; it < 100 && std::abs(b - a) > 1e-13; ++it)
   {
     const double t = (fa - fb) != 0.0 ? b - fb * (b - a) / (fb - fa) : 0.5 * (a + b);
+    if (stop(std::abs(b - a), t))
+      break;
     const double ft = g(t);
     if (ft == 0.0)
       return t;
@@ -64,6 +66,7 @@ double solveSignChange(const G& g, double a, double b)
       b = t, fb = ft;
     }
   }
+  bracket = std::max(bracket, std::abs(b - a));
   return 0.5 * (a + b);
 }
 
@@ -239,7 +242,12 @@ public:
   PatchIntegral run()
   {
     double cuts[16];
-    const int nc = structureBreakpoints(f_, cuts, 16);
+    // (a quarter of the work for the search: beyond, a breakpoint left in its bracket is found again where the rules'
+    // samples see the structure change, by bisection on it)
+    StructureSearch search;
+    search.max_work = max_work_ / 4;
+    const int nc = structureBreakpoints(f_, cuts, 16, search);
+    work_ += search.work;
     // A patch the whole of which a Jacobi pair takes: the pair's estimate leaves most of a tight tolerance to the paths
     // (its median over the Fig. 4 set at 1e-4 of mu F_z: 9e-6 of the patch integrals against 1.6e-4), so the loose
     // share serves for every path, the halves' too where the pair's estimate misses: at 1e-4 the Fig. 4 set's median
@@ -587,7 +595,7 @@ bool polePath(const BristleField& field, double& theta)
   return true;
 }
 
-int structureBreakpoints(const BristleField& field, double* theta, int max_count)
+int structureBreakpoints(const BristleField& field, double* theta, int max_count, StructureSearch& search)
 {
   int n = 0;
   const auto add = [&](double t) {
@@ -607,8 +615,15 @@ int structureBreakpoints(const BristleField& field, double* theta, int max_count
     std::sort(theta, theta + n);
     return n;
   }
-  const auto peak = [&](double t) { return reAdhesionPeak(field, BristlePath::across(field, t)); };
-  const auto count = [&](double t) { return reAdhesionCount(field, BristlePath::across(field, t)); };
+  const auto peak = [&](double t) { return reAdhesionPeak(field, BristlePath::across(field, t), &search.work); };
+  const auto count = [&](double t) { return reAdhesionCount(field, BristlePath::across(field, t), &search.work); };
+  // a path evaluated only where the work left pays for it (else the search stops there, cut)
+  const auto affords = [&](double t) {
+    if (search.work + reAdhesionWork(field, BristlePath::across(field, t)) <= search.max_work)
+      return true;
+    search.cut = true;
+    return false;
+  };
   // G around the pole (the drive vanishes there, so a front-half pole is in G): where the paths stop meeting
   // it, on either side of the pole's path. With the parabolic pressure G is one conic region, and the largest
   // margin along a path changes sign there (regula falsi); with the Hertzian pressure G also holds a band
@@ -616,41 +631,52 @@ int structureBreakpoints(const BristleField& field, double* theta, int max_count
   // Doubling steps out from the pole's path find the first change on each side.
   // (The rigid law's: under eq. 4b a sliding bristle re-adheres where its own sliding speed vanishes, which depends
   // on its history, not on a region fixed in the plane.)
-  if (pole && field.pole().real() > 0.0 && field.law == SlidingLaw::Rigid)
-    for (int side = -1; side <= 1; side += 2)
+  if (pole && field.pole().real() > 0.0 && field.law == SlidingLaw::Rigid && affords(theta_p))
+  {
+    const bool conic = field.pressure.squaredExponent() == 2;
+    // at the pole's path: the conic's margin (where it is negative G has no component here) or the count of stretches
+    const double at_pole = conic ? peak(theta_p) : count(theta_p);
+    for (int side = -1; side <= 1 && !(conic && at_pole < 0.0); side += 2)
     {
       const double edge = side * half_pi;
-      const int c0 = count(theta_p);
-      const bool conic = field.pressure.squaredExponent() == 2;
-      if (conic && peak(theta_p) < 0.0)
-        break;
-      double inside = theta_p, step = 1e-4, outside = NAN;
+      double inside = theta_p, step = 1e-4, outside = NAN, g_inside = at_pole, g_outside = NAN;
       for (int k = 0; k < 60; ++k, step *= 2.0)
       {
         const double t = theta_p + side * step;
-        if ((edge - t) * side <= 0.0)
-          break;
-        if (conic ? peak(t) < 0.0 : count(t) != c0)
+        if ((edge - t) * side <= 0.0 || !affords(t))
+          break;  // (the work spent: this end not reached)
+        const double g = conic ? peak(t) : count(t);
+        if (conic ? g < 0.0 : g != at_pole)
         {
-          outside = t;
+          outside = t, g_outside = g;
           break;
         }
-        inside = t;
+        inside = t, g_inside = g;
       }
       if (std::isnan(outside))
         continue;
+      // each to the precision, or the bracket the work leaves (the next path not paid for)
+      const auto stop = [&](double bracket, double next) {
+        if (bracket <= search.precision)
+          return true;  // (precision 0: never before the search's own end)
+        return !affords(next);
+      };
       if (conic)
-        add(solveSignChange(peak, inside, outside));
+        add(solveSignChange(peak, inside, g_inside, outside, g_outside, stop, search.bracket));
       else
       {
         for (int k = 0; k < 50 && std::abs(outside - inside) > 1e-12; ++k)
         {
           const double m = 0.5 * (inside + outside);
-          (count(m) == c0 ? inside : outside) = m;
+          if (stop(std::abs(outside - inside), m))
+            break;
+          (count(m) == at_pole ? inside : outside) = m;
         }
+        search.bracket = std::max(search.bracket, std::abs(outside - inside));
         add(0.5 * (inside + outside));
       }
     }
+  }
   // G meeting the leading edge (parabolic pressure; the Hertzian's G holds the whole front edge), where under
   // either law a bristle entering the patch starts to adhere or to slide: the margin on the edge z = e^{i psi} is a
   // quartic in t = tan(psi / 2) after multiplying by (1 + t^2)^2
@@ -673,15 +699,25 @@ int structureBreakpoints(const BristleField& field, double* theta, int max_count
   return n;
 }
 
-int reAdhesionBands(const BristleField& field, double* lo, double* hi, int max_count)
+int reAdhesionBands(const BristleField& field, double* lo, double* hi, int max_count, StructureSearch& search)
 {
   double cuts[18];
   cuts[0] = -half_pi;
-  const int nb = structureBreakpoints(field, cuts + 1, 16);
+  const int nb = structureBreakpoints(field, cuts + 1, 16, search);
+  if (search.cut)
+    return 0;  // not every band found (the caller bounds what they could hold)
   cuts[nb + 1] = half_pi;
   int counts[17];
   for (int i = 0; i <= nb; ++i)
-    counts[i] = reAdhesionCount(field, BristlePath::across(field, 0.5 * (cuts[i] + cuts[i + 1])));
+  {
+    const BristlePath path = BristlePath::across(field, 0.5 * (cuts[i] + cuts[i + 1]));
+    if (search.work + reAdhesionWork(field, path) > search.max_work)
+    {
+      search.cut = true;
+      return 0;
+    }
+    counts[i] = reAdhesionCount(field, path, &search.work);
+  }
   // runs of sub-intervals with the same count (the pole's path splits G's component in two), then the runs
   // that cross more stretches of G than both runs beside them
   int n = 0;

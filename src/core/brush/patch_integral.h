@@ -49,14 +49,29 @@ void preparePatchRules();
 /// Theta of the path through the spin pole, if the pole lies inside the patch.
 bool polePath(const BristleField& field, double& theta);
 
+/// How structureBreakpoints locates the ends of G's component around a front-half pole (the rigid law): to a bracket
+/// of `precision` [rad] (0: as far as its searches go, 1e-12 or less), within `max_work` (PathIntegrals::work units; each path's polynomials kRootWork). What it did:
+/// its work, the widest bracket it left a breakpoint in, and whether the work stopped a search before its precision
+/// (`cut`; an end it had not yet reached is then missing). Its searches evaluate about a hundred paths; on tilted
+/// (curved) paths under the Hertzian pressure that had been 0.3-0.8 ms a message, uncounted (bench/work_units.cpp).
+struct StructureSearch
+{
+  double precision = 0.0;
+  long max_work = kUnlimitedWork;
+  long work = 0;
+  double bracket = 0.0;
+  bool cut = false;
+};
+
 /// Where the event structure across the paths changes for reasons fixed in the plane, ascending: the pole's
 /// path; the extent across the paths of G's component around a front-half pole; where G meets the leading
 /// edge. Returns how many it wrote (at most max_count).
-int structureBreakpoints(const BristleField& field, double* theta, int max_count);
+int structureBreakpoints(const BristleField& field, double* theta, int max_count, StructureSearch& search);
 
 /// The ranges of theta where the paths cross a stretch of G that the paths beside them lack (G around a
-/// front-half pole, G at the leading edge): each anchors a streak of re-adhering bristles as wide as itself.
+/// front-half pole, G at the leading edge): each anchors a streak of re-adhering bristles as wide as itself (its ends
+/// within search.bracket; where search.cut, none: not every band was found).
 /// Returns how many it wrote (at most max_count).
-int reAdhesionBands(const BristleField& field, double* lo, double* hi, int max_count);
+int reAdhesionBands(const BristleField& field, double* lo, double* hi, int max_count, StructureSearch& search);
 
 }  // namespace sphere_contact_estimator

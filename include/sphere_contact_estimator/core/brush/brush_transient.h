@@ -185,9 +185,12 @@ public:
   /// points: reserved before the bristles are advanced, so that what the sliding steps may take is known), the sums over
   /// the lattice and its sub-lattices (about 100 a point inside the patch), and a sliding step tried under eq. (4b) (a
   /// Magnus step, an exponential one or a rejection with its share of its piece's setup: 1060-1210 a step along the
-  /// streams). Timed per message, the transient model's units cost at most 9.2-11.5 ns along the manoeuvre and
-  /// config/hostile_scenario.yaml; the previous 3 / 10 / 8 units had cost up to 20 ns, and auto's messages within the
-  /// budget up to 1.3 ms (docs/speed_and_accuracy.md).
+  /// streams) or an event located by isolating a polynomial's root (an onset's quartic that has one, the rigid law's
+  /// re-adhesion: about 1 300 instructions; at the first update of a transient model, where nearly every bristle reaches its
+  /// bound, they had gone uncounted and the update took 10.5 ns a unit: bench/work_units.cpp). Timed per message, the
+  /// transient model's units cost at most 9.2-11.5 ns along the manoeuvre and config/hostile_scenario.yaml; the previous
+  /// 3 / 10 / 8 units had cost up to 20 ns, and auto's messages within the budget up to 1.3 ms
+  /// (docs/speed_and_accuracy.md).
   static constexpr long kBristleWork = 8;
   static constexpr long kSumWork = 2;
   static constexpr long kStepWork = 22;
@@ -276,7 +279,9 @@ private:
   std::vector<ArcMap> arc_maps_ = std::vector<ArcMap>(kArcMaps + 1);  // sized once: the hot path does not allocate
   std::vector<ArcMap> coarse_maps_ = std::vector<ArcMap>(kArcMaps + 1);  // the same for a budget's fewer substeps
   const ArcMap& arcMap(std::vector<ArcMap>& maps, const ContactKinematics& kin, int k, int count, double step) const;
-  double streakBound(const Slips& s) const;
+  // (within max_work, its work added to `work`)
+  double streakBound(const Slips& s, long max_work, long& work) const;
+  static constexpr double kStreakPrecision = 1e-4;  // [rad] of theta, the paths' angle across the patch
   // the sums' cells: along a bristle's motion, how far the patch edge lies ahead and behind and which neighbour is
   // upstream; and its deflection over its cell on the lattice k (0) or sub-lattice k (1-4), with the cell's weight
   struct Motion
@@ -388,6 +393,7 @@ private:
   Eigen::Vector2d V_r_ = Eigen::Vector2d::Zero();
   double omega_gamma_ = 0.0;
   double streak_estimate_ = 0.0;  // streakBound of the last update's inputs
+  long streak_work_ = 0;  // what its search counted (the rigid law): the next update's steps leave that much for it
   // the last update's answer as forces() gives it, while forces_kept_: every change of the state but an update's drops it
   // (reset, coarsen, rotateFrame and a retune clear the spreads' window, clearSpreadWindow; swapStorage)
   BrushForces kept_forces_;

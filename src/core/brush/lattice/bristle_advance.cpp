@@ -46,8 +46,9 @@ BristleAdvance::BristleAdvance(const BrushParameters& p, const ContactKinematics
 {
 }
 
-double BristleAdvance::onset(const Piece& s, double span, bool at_rim) const
+double BristleAdvance::onset(const Piece& s, double span, bool at_rim, bool may_isolate, bool& isolated) const
 {
+  isolated = false;
   // g = |u|^2 - (c f)^2, f^2 = t^m: a polynomial of degree <= 4 in tau
   const Eigen::Vector2d w = drive(s.x), alpha = 0.5 * w_dot_;
   const double c2 = c_ * c_, t0 = at_rim ? 0.0 : s.t0, eps = kRounding * c2;
@@ -90,12 +91,16 @@ double BristleAdvance::onset(const Piece& s, double span, bool at_rim) const
   }
   if (!mayBePositive(g, 4, span))
     return INFINITY;
+  if (!may_isolate)
+    return NAN;
   double root;
+  isolated = true;
   return numerics::signChanges(g, 4, 0.0, span, &root, 1) == 1 ? root : INFINITY;
 }
 
-double BristleAdvance::rigidReAdhesion(const Piece& s, double span) const
+double BristleAdvance::rigidReAdhesion(const Piece& s, double span, bool may_isolate, bool& isolated) const
 {
+  isolated = false;
   // G: d(c f)/dtau >= |w|, with f = t^{m/2}; t' = t1 + 2 t2 tau >= 0 (the bound grows) up to tau* = -t1 / (2 t2)
   if (m_ == 0 || speed2_ == 0.0)
     return INFINITY;  // the bound does not change along the path: G is only where w = 0
@@ -135,8 +140,30 @@ double BristleAdvance::rigidReAdhesion(const Piece& s, double span) const
     return 0.0;
   if (end == 0.0 || !mayBePositive(P, n, end))
     return INFINITY;
+  if (!may_isolate)
+    return NAN;
   double root;
+  isolated = true;
   return numerics::signChanges(P, n, 0.0, end, &root, 1) == 1 ? root : INFINITY;
+}
+
+void BristleAdvance::adhereRemainder(BristleState& s, const Eigen::Vector2d& x, double span) const
+{
+  Eigen::Vector2d trial = adhere(x, s.u, span);
+  const double b_end = bound(x - span * V_r_), n = trial.norm();
+  if (n > b_end)
+  {
+    trial *= b_end / n;
+    if (!s.sliding)
+    {
+      s.sliding = true;  // its onset somewhere along the way, not located
+      s.slip_travel = 0.0;
+      s.jump.setZero();
+    }
+  }
+  s.u = trial;
+  s.step_error = 2.0 * std::max(bound(x), b_end);
+  s.cut = true;
 }
 
 int BristleAdvance::advance(BristleState& s, const Eigen::Vector2d& x_start, double duration, bool at_rim,
@@ -169,8 +196,15 @@ int BristleAdvance::advance(BristleState& s, const Eigen::Vector2d& x_start, dou
     if (!s.sliding)
     {
       const Piece p = piece(x, s.u);
-      const double on = final_event ? INFINITY : onset(p, left, rim);
+      bool isolated = false;
+      const double on = final_event ? NAN : onset(p, left, rim, steps < max_steps, isolated);
+      steps += isolated;
       rim = false;
+      if (std::isnan(on))
+      {
+        adhereRemainder(s, x, left);
+        return steps;
+      }
       if (!(on < left))
       {
         s.u = adhere(x, s.u, left);
@@ -196,7 +230,25 @@ int BristleAdvance::advance(BristleState& s, const Eigen::Vector2d& x_start, dou
     }
     if (law_ == SlidingLaw::Rigid)
     {
-      const double re = final_event ? INFINITY : rigidReAdhesion(piece(x, s.u), left);
+      bool isolated = false;
+      const double re = final_event ? NAN : rigidReAdhesion(piece(x, s.u), left, steps < max_steps, isolated);
+      steps += isolated;
+      if (std::isnan(re))
+      {
+        // its re-adhesion not located: on the sliding field at the end, no claim beyond the bound
+        const double b_start = bound(x);
+        x -= left * V_r_;
+        const Eigen::Vector2d w = drive(x);
+        const double b = bound(x), wn = w.norm();
+        if (wn > 0.0)
+          s.u = b / wn * w;
+        else if (s.u.squaredNorm() > 0.0)
+          s.u *= b / s.u.norm();
+        s.slip_travel += speed * left;
+        s.step_error = 2.0 * std::max(b_start, b);
+        s.cut = true;
+        return steps;
+      }
       const double run = std::min(re, left);
       x -= run * V_r_;
       left -= run;

@@ -54,7 +54,9 @@ public:
 
   /// Advances `s` from position x_start [m] over `duration` [s]; at_rim: x_start is on the patch edge (an entering
   /// bristle, u = 0 there). max_steps bounds the sliding steps it may take (the remainder in one step, its error
-  /// counted). Returns the steps taken (work).
+  /// counted). Returns the steps taken (work), and with them each event located by isolating a polynomial's root (an
+  /// onset's quartic, the rigid law's re-adhesion: about a step's work; where nearly every bristle reaches its bound in
+  /// an update, the first one of a transient model at 10 ms, they had been a third of its instructions, uncounted).
   int advance(BristleState& s, const Eigen::Vector2d& x_start, double duration, bool at_rim, int max_steps) const;
 
   /// An adhering bristle that cannot reach its bound within `duration` from x_start (staysInside): u advanced over it
@@ -116,9 +118,15 @@ private:
   // one return-mapping step (and two half steps) of a sliding bristle at tau along the piece; returns the factor a
   // carried direction error shrinks by
   double returnMapping(BristleState& s, const Along& piece, double tau, double d, double& error, bool& slides) const;
-  // the first time in (0, span] where an adhering bristle reaches the bound (span + 1 if it does not); u and t at it
-  double onset(const Piece& piece, double span, bool at_rim) const;
-  double rigidReAdhesion(const Piece& piece, double span) const;
+  // the first time in (0, span] where an adhering bristle reaches the bound (INFINITY if it does not); `isolated` is
+  // raised where that took the polynomial's exact root isolation (work the caller counts as a step's: kStepWork), and
+  // where that was needed but not `may_isolate` (the work budget spent), NAN
+  double onset(const Piece& piece, double span, bool at_rim, bool may_isolate, bool& isolated) const;
+  double rigidReAdhesion(const Piece& piece, double span, bool may_isolate, bool& isolated) const;
+  // The rest of an update in one return mapping where its events are not located (the work budget spent, or past
+  // kMaxEvents): the adhering closed form, put back on the bound at the end where it lies beyond; no claim beyond the
+  // bound, |u - u_true| <= 2 max(bound) (as CoulombSlide::remainder)
+  void adhereRemainder(BristleState& s, const Eigen::Vector2d& x, double span) const;
   // eq. (4b)'s sliding from the piece's start over span (CoulombSlide, coulomb_slide.cpp): returns when it ended
   // (re-adhered: < span) and the steps
   double coulombSlide(BristleState& s, const Eigen::Vector2d& x_start, double span, int& steps, int max_steps) const;

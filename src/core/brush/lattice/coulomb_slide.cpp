@@ -398,7 +398,13 @@ inline double BristleAdvance::CoulombSlide::run()
   // It slides only while pushed outward, w.e - db/dtau <= |w| - db/dtau, which turns negative where the path enters G
   // (|w| <= db/dtau, the rigid law's re-adhesion: exact): it has re-adhered there at the latest, and no step passes
   // that point (a long stiff step, checked at its middle and end, passed over the re-adhesion and slid on)
-  const double end = std::min(span_, a_.rigidReAdhesion(Piece{ p_.x, s_.u, p_.t0, p_.t1, p_.t2 }, span_));
+  bool isolated = false;
+  const double entry =
+      a_.rigidReAdhesion(Piece{ p_.x, s_.u, p_.t0, p_.t1, p_.t2 }, span_, steps_ < max_steps_, isolated);
+  steps_ += isolated;  // (work: counted as a step)
+  if (std::isnan(entry))
+    return remainder(0.0);  // the work budget spent
+  const double end = std::min(span_, entry);
   while (walk.tau < end)
   {
     if (steps_ >= max_steps_)

@@ -85,6 +85,7 @@ int findReAdhesionRegion(PathContext& ctx, Interval* g)
     const Segment& s = ctx.segments[i];
     if (i > 0)
       reAdhesionSeries(ctx.field, s, H);
+    ctx.out.work += kRootWork(s.n);
     double roots[2 * kMaxDegree];
     const int k = numerics::signChanges(H, s.n, s.t0 - s.tm, std::min(s.t1, half) - s.tm, roots, 2 * kMaxDegree);
     for (int j = 0; j < k; ++j)
@@ -164,12 +165,26 @@ void reAdhesionPolynomials(const BristleField& field, const BristlePath& path, c
 }
 }  // namespace
 
-double reAdhesionPeak(const BristleField& field, const BristlePath& path)
+long reAdhesionWork(const BristleField& field, const BristlePath& path)
+{
+  long work = 0;
+  if (!field.pressure.vanishesAtRim() || !(path.length > 0.0))
+    return work;
+  if (field.omega == 0.0)
+    return kRootWork(field.pressure.squaredExponent() == 2 ? 2 : 4);  // (reAdhesionPolynomials' straight path)
+  const double half = 0.5 * path.length, rate = std::abs(field.omega);
+  const int count = std::clamp(static_cast<int>(std::ceil(rate * half)), 1, path::kMaxSegments);
+  return count * kRootWork(path::seriesDegree(rate * half / count));
+}
+
+double reAdhesionPeak(const BristleField& field, const BristlePath& path, long* work)
 {
   if (!field.pressure.vanishesAtRim() || !(path.length > 0.0))
     return -1.0;
   double peak = -INFINITY;
   reAdhesionPolynomials(field, path, [&](const double* H, int n, double lo, double hi) {
+    if (work)
+      *work += kRootWork(n);
     double dH[path::kSize], cuts[2 * path::kMaxDegree];
     for (int k = 1; k <= n; ++k)
       dH[k - 1] = k * H[k];
@@ -181,13 +196,15 @@ double reAdhesionPeak(const BristleField& field, const BristlePath& path)
   return peak;
 }
 
-int reAdhesionCount(const BristleField& field, const BristlePath& path)
+int reAdhesionCount(const BristleField& field, const BristlePath& path, long* work)
 {
   if (!field.pressure.vanishesAtRim() || !(path.length > 0.0))
     return 0;
   int count = 0;
   bool first = true, inside = false;
   reAdhesionPolynomials(field, path, [&](const double* H, int n, double lo, double hi) {
+    if (work)
+      *work += kRootWork(n);
     if (first)
     {
       inside = numerics::evaluatePolynomial(H, n, lo) >= 0.0;
