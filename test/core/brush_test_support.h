@@ -29,6 +29,27 @@ inline BrushParameters figure4Parameters(bool tilt = false, int resolution = 32,
   return p;
 }
 
+/// A robot whose rigid-law search for G's component around a front-half pole is at its dearest (found by
+/// bench/work_units.cpp): tilted paths, the Hertzian pressure, the rigid law; its slips and spin in RigidSearchInputs.
+inline BrushParameters rigidSearchRobot(int resolution = 32)
+{
+  BrushParameters p;
+  p.a = 0.0148;
+  p.k = 5.46e7;
+  p.F_z = 63.5;
+  p.mu = 1.04;
+  p.pressure = PressureDistribution::Hertzian;
+  p.tilt = true;
+  p.sliding_law = SlidingLaw::Rigid;
+  p.resolution = resolution;
+  return p;
+}
+struct RigidSearchInputs
+{
+  Eigen::Vector2d sigma{ -0.0815, 0.0864 };
+  double a_phi = -0.959;  ///< phi a; chi_gamma 0.9 (phi_gamma = 0.9 phi, phi_psi = 0.1 phi)
+};
+
 /// Both laws, for tests of what holds under either.
 constexpr SlidingLaw kSlidingLaws[] = { SlidingLaw::Coulomb, SlidingLaw::Rigid };
 

@@ -744,16 +744,10 @@ TEST(BrushSteady, WorkPerEvaluationIsBounded)
 // default budget the evaluation, search included, stays within it and its estimate of the converged answer.
 TEST(BrushSteady, TheStructureSearchIsCountedAndBounded)
 {
-  BrushParameters p;
-  p.a = 0.0148;
-  p.k = 5.46e7;
-  p.F_z = 63.5;
-  p.mu = 1.04;
-  p.pressure = PressureDistribution::Hertzian;
-  p.tilt = true;
-  p.sliding_law = SlidingLaw::Rigid;
-  const Eigen::Vector2d sigma(-0.0815, 0.0864);
-  const double phi = -0.959 / p.a, phi_gamma = 0.9 * phi, phi_psi = 0.1 * phi;
+  const BrushParameters p = test::rigidSearchRobot();
+  const test::RigidSearchInputs in;
+  const Eigen::Vector2d sigma = in.sigma;
+  const double phi = in.a_phi / p.a, phi_gamma = 0.9 * phi, phi_psi = 0.1 * phi;
   BristleField f;
   ASSERT_TRUE(BrushSteady(p).field(sigma, phi, phi_gamma, phi_psi, f));
   double full[16], theta_p = 0.0;

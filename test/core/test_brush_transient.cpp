@@ -1330,16 +1330,9 @@ TEST(BrushTransient, TheStreakBoundsSearchIsCountedAndBounded)
   // had gone uncounted (0.3 ms of an update at resolution 16: bench/work_units.cpp). Counted, to a precision that
   // serves against three spacings; where the budget leaves too little for it, the most that as many bands as it looks
   // for could hold instead, in the estimate. The robot of the steady solver's test of the same search, settled.
-  BrushParameters p;
-  p.a = 0.0148;
-  p.k = 5.46e7;
-  p.F_z = 63.5;
-  p.mu = 1.04;
-  p.pressure = PressureDistribution::Hertzian;
-  p.tilt = true;
-  p.sliding_law = SlidingLaw::Rigid;
-  p.resolution = 16;
-  const ContactKinematics k = ContactKinematics::fromSlips({ -0.0815, 0.0864 }, -0.959 / p.a, 0.9, 1.0);
+  const BrushParameters p = test::rigidSearchRobot(16);
+  const test::RigidSearchInputs in;
+  const ContactKinematics k = ContactKinematics::fromSlips(in.sigma, in.a_phi / p.a, 0.9, 1.0);
   BrushTransient model(p);
   for (int m = 0; m < 8; ++m)
     model.update(k, 0.02);

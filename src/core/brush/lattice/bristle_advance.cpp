@@ -233,23 +233,11 @@ int BristleAdvance::advance(BristleState& s, const Eigen::Vector2d& x_start, dou
       bool isolated = false;
       const double re = final_event ? NAN : rigidReAdhesion(piece(x, s.u), left, steps < max_steps, isolated);
       steps += isolated;
-      if (std::isnan(re))
-      {
-        // its re-adhesion not located: on the sliding field at the end, no claim beyond the bound
-        const double b_start = bound(x);
-        x -= left * V_r_;
-        const Eigen::Vector2d w = drive(x);
-        const double b = bound(x), wn = w.norm();
-        if (wn > 0.0)
-          s.u = b / wn * w;
-        else if (s.u.squaredNorm() > 0.0)
-          s.u *= b / s.u.norm();
-        s.slip_travel += speed * left;
-        s.step_error = 2.0 * std::max(b_start, b);
-        s.cut = true;
-        return steps;
-      }
-      const double run = std::min(re, left);
+      // (not located: the work budget spent, or past kMaxEvents; on the sliding field at the end, no claim beyond the
+      // bound)
+      const bool located = !std::isnan(re);
+      const double b_start = located ? 0.0 : bound(x);
+      const double run = located ? std::min(re, left) : left;
       x -= run * V_r_;
       left -= run;
       const Eigen::Vector2d w = drive(x);
@@ -258,6 +246,13 @@ int BristleAdvance::advance(BristleState& s, const Eigen::Vector2d& x_start, dou
         s.u = b / wn * w;
       else if (s.u.squaredNorm() > 0.0)
         s.u *= b / s.u.norm();
+      if (!located)
+      {
+        s.slip_travel += speed * run;
+        s.step_error = 2.0 * std::max(b_start, b);
+        s.cut = true;
+        return steps;
+      }
       if (re < INFINITY && re <= run)
       {
         s.sliding = false;
