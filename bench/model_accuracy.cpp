@@ -47,6 +47,7 @@
 #include "brush_marching.h"
 #include "noisy_history.h"
 #include "sample_covariance.h"
+#include "whole_number.h"
 #include "sphere_contact_estimator/core/brush/brush_auto.h"
 #include "sphere_contact_estimator/core/brush/brush_linear.h"
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
@@ -59,6 +60,7 @@
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_table.h"
 
 namespace sce = sphere_contact_estimator;
+using sce::bench::wholeNumber;
 
 namespace
 {
@@ -1217,14 +1219,6 @@ int usage()
 }
 
 // A whole decimal number in [lo, hi], or nothing (no exception on text).
-std::optional<long> wholeNumber(const std::string& text, long lo, long hi)
-{
-  if (text.empty() || text.size() > 12 || text.find_first_not_of("0123456789") != std::string::npos)
-    return std::nullopt;
-  const long v = std::stol(text);
-  return v >= lo && v <= hi ? std::optional<long>(v) : std::nullopt;
-}
-
 int main(int argc, char** argv)
 {
   const std::vector<std::string> args(argv + 1, argv + argc);

@@ -28,10 +28,12 @@
 #include "sphere_contact_estimator/core/brush/brush_auto.h"
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
 #include "sphere_contact_estimator/core/brush/brush_transient.h"
+#include "whole_number.h"
 
 namespace
 {
 namespace sce = sphere_contact_estimator;
+using sce::bench::wholeNumber;
 using Json = nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
@@ -170,19 +172,6 @@ double quantile(std::vector<double> v, double q)
   return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
 }
 
-std::optional<long> wholeNumber(const std::string& s, long lo, long hi)
-{
-  try
-  {
-    std::size_t used = 0;
-    const long v = std::stol(s, &used);
-    return used == s.size() && v >= lo && v <= hi ? std::optional<long>(v) : std::nullopt;
-  }
-  catch (const std::exception&)
-  {
-    return std::nullopt;
-  }
-}
 }  // namespace
 
 int main(int argc, char** argv)

@@ -320,7 +320,7 @@ BrushForces BrushTransient::update(const ContactKinematics& kin, const Slips& sl
       // fewer substeps than accuracy wants where the work budget cannot pay for them (a fixed lattice, or auto's at its
       // coarsest): the answer then makes no claim beyond the friction circle's, nor do the next ones (suspect_)
       const long point_work = static_cast<long>(w_) * w_ * kPointWork;
-      const long affordable = (work_budget_ - sumsWork() - streak_work_) / point_work;  // and the sums, the streaks
+      const long affordable = (work_budget_ - afterStepsWork()) / point_work;
       if (count > affordable)
       {
         count = static_cast<int>(std::max(1L, affordable));
@@ -422,15 +422,19 @@ int BrushTransient::substepsAt(const ContactKinematics& kin, double dt, double h
 
 long BrushTransient::predictWork(const ContactKinematics& kin, double dt) const
 {
+  // the lattice's, and the last update's streak search (the rigid law's, reserved before the steps)
+  long lattice;
   if (!p_.tilt && stepping_ == TransientStepping::WholeStep)
   {
     // the closed forms of every bristle, the sums, and the sliding steps
-    return static_cast<long>(w_) * w_ * kBristleWork + sumsWork() +
-           static_cast<long>(predictSteps(kin, dt)) * kStepWork + streak_work_;
+    lattice = static_cast<long>(w_) * w_ * kBristleWork + sumsWork() +
+              static_cast<long>(predictSteps(kin, dt)) * kStepWork;
   }
-  if (stepping_ == TransientStepping::WholeStep)
-    return arcsWork(dt > 0.0 ? substeps(kin, dt) : 0, w_) + streak_work_;
-  return substepsWork(dt > 0.0 ? substeps(kin, dt) : 0, w_) + streak_work_;
+  else if (stepping_ == TransientStepping::WholeStep)
+    lattice = arcsWork(dt > 0.0 ? substeps(kin, dt) : 0, w_);
+  else
+    lattice = substepsWork(dt > 0.0 ? substeps(kin, dt) : 0, w_);
+  return lattice + streak_work_;
 }
 
 long BrushTransient::arcsWork(int n, long w) const
@@ -447,19 +451,23 @@ long BrushTransient::arcsWork(int n, long w) const
 
 long BrushTransient::predictFinerWork(const ContactKinematics& kin, double dt) const
 {
+  // the finer lattice's, and the streak search (as predictWork's: it does not depend on the lattice)
+  long lattice;
   if (!p_.tilt && stepping_ == TransientStepping::WholeStep)
   {
     const long w = 2L * w_;  // (the finer window, windowWidth(2 n), is a little less)
-    return w * w * (kBristleWork + kSumWork) + static_cast<long>(kFinerSteps * predictSteps(kin, dt)) * kStepWork +
-           streak_work_;
+    lattice = w * w * (kBristleWork + kSumWork) + static_cast<long>(kFinerSteps * predictSteps(kin, dt)) * kStepWork;
   }
-  // substeps (tilt): the finer lattice's own count (about twice this one's: half the spacing) over its window, as
-  // predictWork counts them (8 times this one's prediction was 1.7 times a 16's step at 8, 66 k units against 39 k: a
-  // lattice the budget had cut to 8 never came back); stepped bristle by bristle, the share of them this one's took
-  const int n = dt > 0.0 ? substepsAt(kin, dt, 0.5 * h_) : 0;
-  if (stepping_ == TransientStepping::WholeStep)
-    return arcsWork(n, windowWidth(2 * p_.resolution)) + streak_work_;
-  return substepsWork(n, windowWidth(2 * p_.resolution)) + streak_work_;
+  else
+  {
+    // substeps (tilt): the finer lattice's own count (about twice this one's: half the spacing) over its window, as
+    // predictWork counts them (8 times this one's prediction was 1.7 times a 16's step at 8, 66 k units against 39 k: a
+    // lattice the budget had cut to 8 never came back); stepped bristle by bristle, the share of them this one's took
+    const int n = dt > 0.0 ? substepsAt(kin, dt, 0.5 * h_) : 0;
+    lattice = stepping_ == TransientStepping::WholeStep ? arcsWork(n, windowWidth(2 * p_.resolution))
+                                                        : substepsWork(n, windowWidth(2 * p_.resolution));
+  }
+  return lattice + streak_work_;
 }
 
 bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
@@ -475,7 +483,7 @@ bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
   const lattice::BristleAdvance advance(p_, kin, timeTolerance());
   // the sliding steps within what the budget leaves after every bristle's closed forms and the sums; past it, each
   // bristle's remainder in one step (its error counted in the estimate)
-  long pool = work_budget_ - work_ - static_cast<long>(w_) * w_ * kBristleWork - sumsWork() - streak_work_;
+  long pool = work_budget_ - work_ - static_cast<long>(w_) * w_ * kBristleWork - afterStepsWork();
   bool enough = true;
   long steps = 0;
   const Eigen::Vector2d along = rowStep();
@@ -736,7 +744,7 @@ bool BrushTransient::advanceArcs(const ContactKinematics& kin, double dt, int co
       }
       work += kBristleWork;
     }
-  long pool = work_budget_ - work_ - sumsWork() - streak_work_ - work;
+  long pool = work_budget_ - work_ - afterStepsWork() - work;
   bool enough = true;
   const Coupling coupling(-kin.psi_dot, step);
   int level = count;  // the substeps of the coarse level whose coupling, motion and maps are kept
@@ -915,15 +923,15 @@ double BrushTransient::streakBound(const Slips& s, long max_work, long& work) co
   const Eigen::Vector2d sigma = RollingFrame(s.epsilon).toRolling(s.sigma);
   if (!makeBristleField(p_, { sigma.x(), sigma.y() }, s.phi, s.phi_gamma, s.phi_psi, field))
     return 0.0;
-  double lo[8], hi[8], bound = 0.0;
+  constexpr int kBands = 8;  // the most it looks for
+  double lo[kBands], hi[kBands], bound = 0.0;
   StructureSearch search;
   search.precision = kStreakPrecision;
   search.max_work = max_work;
-  const int n = reAdhesionBands(field, lo, hi, 8, search);
+  const int n = reAdhesionBands(field, lo, hi, kBands, search);
   work += search.work;
-  if (search.cut)
-    return 8 * 2.0 * peakFactor(p_.pressure) * 3.0 * h_ / p_.a;  // the work spent before every band was found: the most
-                                                                 // that as many bands as it looks for could hold
+  if (search.cut)  // the work spent before every band was found: the most that as many bands as it looks for could hold
+    return kBands * 2.0 * peakFactor(p_.pressure) * 3.0 * h_ / p_.a;
   const double slack = 2.0 * search.bracket;  // |d sin| <= |d theta| at either end
   for (int i = 0; i < n; ++i)
   {

@@ -50,10 +50,11 @@ void preparePatchRules();
 bool polePath(const BristleField& field, double& theta);
 
 /// How structureBreakpoints locates the ends of G's component around a front-half pole (the rigid law): to a bracket
-/// of `precision` [rad] (0: as far as its searches go, 1e-12 or less), within `max_work` (PathIntegrals::work units; each path's polynomials kRootWork). What it did:
-/// its work, the widest bracket it left a breakpoint in, and whether the work stopped a search before its precision
-/// (`cut`; an end it had not yet reached is then missing). Its searches evaluate about a hundred paths; on tilted
-/// (curved) paths under the Hertzian pressure that had been 0.3-0.8 ms a message, uncounted (bench/work_units.cpp).
+/// of `precision` [rad] (0: as far as its searches go, 1e-12 or less), within `max_work` (PathIntegrals::work units;
+/// each path's polynomials kRootWork). What it did: its work, the widest bracket it left a breakpoint in, and whether
+/// the work stopped a search before its precision (`cut`; an end it had not yet reached is then missing). Its
+/// searches evaluate about a hundred paths; on tilted (curved) paths under the Hertzian pressure that had been
+/// 0.3-0.8 ms a message, uncounted (bench/work_units.cpp).
 struct StructureSearch
 {
   double precision = 0.0;

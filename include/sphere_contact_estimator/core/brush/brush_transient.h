@@ -182,15 +182,15 @@ public:
   /// and without tilt, from callgrind's instruction counts along both recorded streams: a lattice point over a whole
   /// update (the loop, an adhering bristle's closed form and the window's recentring, about 100 instructions, and the
   /// onsets of sliding looked for, a quartic's roots, about 450 each, on the weave at 100 Hz at more than half the
-  /// points: reserved before the bristles are advanced, so that what the sliding steps may take is known), the sums over
-  /// the lattice and its sub-lattices (about 100 a point inside the patch), and a sliding step tried under eq. (4b) (a
-  /// Magnus step, an exponential one or a rejection with its share of its piece's setup: 1060-1210 a step along the
-  /// streams) or an event located by isolating a polynomial's root (an onset's quartic that has one, the rigid law's
-  /// re-adhesion: about 1 300 instructions; at the first update of a transient model, where nearly every bristle reaches its
-  /// bound, they had gone uncounted and the update took 10.5 ns a unit: bench/work_units.cpp). Timed per message, the
-  /// transient model's units cost at most 9.2-11.5 ns along the manoeuvre and config/hostile_scenario.yaml; the previous
-  /// 3 / 10 / 8 units had cost up to 20 ns, and auto's messages within the budget up to 1.3 ms
-  /// (docs/speed_and_accuracy.md).
+  /// points: reserved before the bristles are advanced, so that what the sliding steps may take is known), the sums
+  /// over the lattice and its sub-lattices (about 100 a point inside the patch), and a sliding step tried under
+  /// eq. (4b) (a Magnus step, an exponential one or a rejection with its share of its piece's setup: 1060-1210 a
+  /// step along the streams) or an event located by isolating a polynomial's root (an onset's quartic that has one, the
+  /// rigid law's re-adhesion: about 1 300 instructions; at the first update of a transient model, where nearly every
+  /// bristle reaches its bound, they had gone uncounted and the update took 10.5 ns a unit: bench/work_units.cpp).
+  /// Timed per message, the transient model's units cost at most 9.2-11.5 ns along the manoeuvre and
+  /// config/hostile_scenario.yaml; the previous 3 / 10 / 8 units had cost up to 20 ns, and auto's messages within the
+  /// budget up to 1.3 ms (docs/speed_and_accuracy.md).
   static constexpr long kBristleWork = 8;
   static constexpr long kSumWork = 2;
   static constexpr long kStepWork = 22;
@@ -311,6 +311,8 @@ private:
   // sub-lattices' largest spread from the full sum (spread).
   BrushForces sums(double& fixed, double& spread) const;
   long sumsWork() const { return static_cast<long>(w_) * w_ * kSumWork; }  // what sums() counts
+  // what an update's steps leave for what follows them: the sums, and the last update's streak search (streak_work_)
+  long afterStepsWork() const { return sumsWork() + streak_work_; }
   // what a step by n substeps (-1: beyond kMaxSubsteps) counts over a window w points wide: every point at each, and the
   // sums
   static long substepsWork(int n, long w) { return (n < 0 ? kMaxSubsteps : n) * kPointWork * w * w + w * w * kSumWork; }

@@ -147,23 +147,18 @@ double BristleAdvance::rigidReAdhesion(const Piece& s, double span, bool may_iso
   return numerics::signChanges(P, n, 0.0, end, &root, 1) == 1 ? root : INFINITY;
 }
 
-void BristleAdvance::adhereRemainder(BristleState& s, const Eigen::Vector2d& x, double span) const
+bool BristleAdvance::remainder(BristleState& s, const Eigen::Vector2d& x, double span, double b_start,
+                               double b_end) const
 {
   Eigen::Vector2d trial = adhere(x, s.u, span);
-  const double b_end = bound(x - span * V_r_), n = trial.norm();
-  if (n > b_end)
-  {
+  const double n = trial.norm();
+  const bool slides = n > b_end;
+  if (slides)
     trial *= b_end / n;
-    if (!s.sliding)
-    {
-      s.sliding = true;  // its onset somewhere along the way, not located
-      s.slip_travel = 0.0;
-      s.jump.setZero();
-    }
-  }
   s.u = trial;
-  s.step_error = 2.0 * std::max(bound(x), b_end);
+  s.step_error = 2.0 * std::max(b_end, b_start);
   s.cut = true;
+  return slides;
 }
 
 int BristleAdvance::advance(BristleState& s, const Eigen::Vector2d& x_start, double duration, bool at_rim,
@@ -202,7 +197,12 @@ int BristleAdvance::advance(BristleState& s, const Eigen::Vector2d& x_start, dou
       rim = false;
       if (std::isnan(on))
       {
-        adhereRemainder(s, x, left);
+        if (remainder(s, x, left, bound(x), bound(x - left * V_r_)))
+        {
+          s.sliding = true;  // its onset somewhere along the way, not located
+          s.slip_travel = 0.0;
+          s.jump.setZero();
+        }
         return steps;
       }
       if (!(on < left))

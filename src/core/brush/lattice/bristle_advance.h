@@ -123,10 +123,11 @@ private:
   // where that was needed but not `may_isolate` (the work budget spent), NAN
   double onset(const Piece& piece, double span, bool at_rim, bool may_isolate, bool& isolated) const;
   double rigidReAdhesion(const Piece& piece, double span, bool may_isolate, bool& isolated) const;
-  // The rest of an update in one return mapping where its events are not located (the work budget spent, or past
-  // kMaxEvents): the adhering closed form, put back on the bound at the end where it lies beyond; no claim beyond the
-  // bound, |u - u_true| <= 2 max(bound) (as CoulombSlide::remainder)
-  void adhereRemainder(BristleState& s, const Eigen::Vector2d& x, double span) const;
+  // The rest of an update from x over span in one return mapping where its events are not located (the work budget
+  // spent, or past kMaxEvents; CoulombSlide::remainder too): the adhering closed form, put back on the bound b_end at
+  // the end where it lies beyond (then true: it slides there); no claim beyond the bound, |u - u_true| <= 2 max(b_start,
+  // b_end), cut
+  bool remainder(BristleState& s, const Eigen::Vector2d& x, double span, double b_start, double b_end) const;
   // eq. (4b)'s sliding from the piece's start over span (CoulombSlide, coulomb_slide.cpp): returns when it ended
   // (re-adhered: < span) and the steps
   double coulombSlide(BristleState& s, const Eigen::Vector2d& x_start, double span, int& steps, int max_steps) const;

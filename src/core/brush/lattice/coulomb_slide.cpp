@@ -458,17 +458,7 @@ inline double BristleAdvance::CoulombSlide::run()
 inline double BristleAdvance::CoulombSlide::remainder(double tau)
 {
   // no work left for steps: the remainder's return mapping alone, no claim beyond |u|, |u_true| <= the bound
-  const double d = span_ - tau;
-  const Point q1 = a_.at(p_, span_);
-  Eigen::Vector2d trial = a_.adhere(p_.x - tau * a_.V_r_, s_.u, d);
-  const double n = trial.norm();
-  const bool slides = n > q1.b;
-  if (slides)
-    trial *= q1.b / n;
-  s_.u = trial;
-  s_.step_error = 2.0 * std::max(q1.b, a_.at(p_, tau).b);
-  s_.cut = true;
-  return slides ? INFINITY : span_;
+  return a_.remainder(s_, p_.x - tau * a_.V_r_, span_ - tau, a_.at(p_, tau).b, a_.at(p_, span_).b) ? INFINITY : span_;
 }
 
 inline bool BristleAdvance::CoulombSlide::faint(Walk& walk, const Point& q0, const Point& q1, double d)

@@ -121,11 +121,30 @@ double reAdhesionMargin(const BristleField& field, std::complex<double> z)
 
 namespace
 {
+// How reAdhesionPolynomials takes a path's front half: on a straight path one polynomial of `degree` (2 for the
+// parabolic bound, 4 for the Hertzian), on a circle `count` segments of length h, each a Taylor series of `degree`
+struct FrontHalf
+{
+  int count, degree;
+  double half, h;
+};
+FrontHalf frontHalf(const BristleField& field, const BristlePath& path)
+{
+  const double half = 0.5 * path.length;
+  if (field.omega == 0.0)
+    return { 1, field.pressure.squaredExponent() == 2 ? 2 : 4, half, half };
+  const double rate = std::abs(field.omega);
+  const int count = std::clamp(static_cast<int>(std::ceil(rate * half)), 1, path::kMaxSegments);
+  const double h = half / count;
+  return { count, path::seriesDegree(rate * h), half, h };
+}
+
 // The re-adhesion margin along the front half of a path, as polynomials: visit(H, n, lo, hi) for each piece (one
 // polynomial in x on a straight path, Taylor series per segment on a circle).
 template <class Visit>
 void reAdhesionPolynomials(const BristleField& field, const BristlePath& path, const Visit& visit)
 {
+  const FrontHalf front = frontHalf(field, path);
   if (field.omega == 0.0)
   {
     // straight: H is a polynomial in x on [0, x_e] (y fixed), w = (A, B + phi x)
@@ -136,7 +155,7 @@ void reAdhesionPolynomials(const BristleField& field, const BristlePath& path, c
     if (field.pressure.squaredExponent() == 2)  // 4 x^2 - |w|^2
     {
       H[0] = -w0, H[1] = -w1, H[2] = 4.0 - w2;
-      visit(H, 2, 0.0, xe);
+      visit(H, front.degree, 0.0, xe);
     }
     else  // 4 x^2 - 4 (1 - y^2 - x^2) |w|^2
     {
@@ -146,19 +165,16 @@ void reAdhesionPolynomials(const BristleField& field, const BristlePath& path, c
       H[2] = 4.0 - 4.0 * (q * w2 - w0);
       H[3] = 4.0 * w1;
       H[4] = 4.0 * w2;
-      visit(H, 4, 0.0, xe);
+      visit(H, front.degree, 0.0, xe);
     }
     return;
   }
-  const double half = 0.5 * path.length, rate = std::abs(field.omega);
-  const int count = std::clamp(static_cast<int>(std::ceil(rate * half)), 1, path::kMaxSegments);
-  const double h = half / count;
-  const int degree = path::seriesDegree(rate * h);
+  const double h = front.h;
   path::Segment g;
   double H[path::kSize];
-  for (int i = 0; i < count; ++i)
+  for (int i = 0; i < front.count; ++i)
   {
-    g.build(field, path, i * h, i + 1 == count ? half : (i + 1) * h, degree, i * h);
+    g.build(field, path, i * h, i + 1 == front.count ? front.half : (i + 1) * h, front.degree, i * h);
     path::reAdhesionSeries(field, g, H);
     visit(H, g.n, g.t0 - g.tm, g.t1 - g.tm);
   }
@@ -167,14 +183,10 @@ void reAdhesionPolynomials(const BristleField& field, const BristlePath& path, c
 
 long reAdhesionWork(const BristleField& field, const BristlePath& path)
 {
-  long work = 0;
   if (!field.pressure.vanishesAtRim() || !(path.length > 0.0))
-    return work;
-  if (field.omega == 0.0)
-    return kRootWork(field.pressure.squaredExponent() == 2 ? 2 : 4);  // (reAdhesionPolynomials' straight path)
-  const double half = 0.5 * path.length, rate = std::abs(field.omega);
-  const int count = std::clamp(static_cast<int>(std::ceil(rate * half)), 1, path::kMaxSegments);
-  return count * kRootWork(path::seriesDegree(rate * half / count));
+    return 0;
+  const FrontHalf front = frontHalf(field, path);
+  return front.count * kRootWork(front.degree);
 }
 
 double reAdhesionPeak(const BristleField& field, const BristlePath& path, long* work)
