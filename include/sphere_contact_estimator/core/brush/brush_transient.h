@@ -288,12 +288,17 @@ private:
   {
     double ahead = INFINITY, behind = INFINITY;
     int di = 0, dj = 0;
+    Eigen::Vector2d e = Eigen::Vector2d::Zero();  // the motion's direction (unit; zero at rest)
   };
   // the motion's direction at x (unit; zero at rest) and, in it, the motion at x (without tilt the direction is the
   // same everywhere: the sums take it once)
   Eigen::Vector2d headingAt(const Eigen::Vector2d& x) const;
   Motion motionAt(const Eigen::Vector2d& x, const Eigen::Vector2d& e) const;
   Eigen::Vector2d cellSum(int i, int j, const Motion& m, int k, double& weight) const;
+  // The last cell before the trailing edge holds its adhering bristle's deflection u up to the edge, where the bound
+  // vanishes: over the layer next to the edge where the bound is below |u| (the bristle will slide there), the integral
+  // of the bound's deflection minus u along the motion [m^2] (cellSum; zero for the uniform pressure)
+  Eigen::Vector2d trailingLayer(const Eigen::Vector2d& x, const Eigen::Vector2d& u, const Motion& m) const;
   // What one pass over the lattice gathers for the sums, by lattice (0: the full one, 1-4: the sub-lattices of twice
   // the spacing, the parities of the indices): the cells' deflections, moments about the centre, loads and counts; and
   // the bristles' time-step errors (eq. 4b, each over its cell), the largest utilisation squared and how many slide.
