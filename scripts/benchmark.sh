@@ -31,6 +31,10 @@ log "time per counted unit of work: random robots, every model and law, with and
 taskset -c 0 "$BIN/work_units" 1 60 > "$OUT/work_units.json"
 log "accuracy on the operating points"
 "$BIN/model_accuracy" > "$OUT/accuracy.json"
+log "the transient model at held inputs over random robots, any resolution to 512 (about 5 minutes)"
+for seed in 1 2; do
+  "$BIN/model_accuracy" --held-transient "$seed" 600 > "$OUT/held_transient_$seed.json" || true
+done
 log "the parked robot's random-walk covariance against Monte Carlo over random robots (docs/uncertainty.md; about 10 minutes)"
 "$BIN/model_accuracy" --parked-walk 7 60 > "$OUT/parked_walk.json"
 log "the same parked after a lateral skid, the rear bristles on their bounds (docs/uncertainty.md; about 10 minutes)"
@@ -81,4 +85,5 @@ log "100 random robots (about 50 minutes)"
   --node "$OUT/node.json" --bag "$OUT/bag.json" --default-brush-model "$(default_brush_model)" \
   --replay "$OUT/replay.json" "$OUT/replay_tf.json" "$OUT/writers.json" --replay-streams "$OUT/replay_streams.json" --streams "$OUT/streams.json" --hostile "$OUT/hostile.json" --sweep "$OUT/sweep.json" --replay-profile "$REPO/bench/replay_profile.md" \
   --calibration "$OUT/calibration.json" --work-units "$OUT/work_units.json" \
+  --held-transient "$OUT/held_transient_1.json" "$OUT/held_transient_2.json" \
   --docs "$REPO/docs"

@@ -812,6 +812,26 @@ def work_units_section(wu):
     return lines
 
 
+def held_transient_section(runs):
+    """model_accuracy --held-transient: the transient model's estimate at held inputs over random robots, any
+    resolution up to 512, against the steady solver"""
+    lines = ["### The transient model at held inputs over random robots", "",
+             "`model_accuracy --held-transient SEED N`: N robots of the stream sweep's envelope (patch radius 4–50 mm,"
+             " k 3e7–1e9 N/m³, 1–40 kg, μ 0.3–1.2, every pressure, either law), slips and spins from 1e-3 of |σ| ≤ 0.3,"
+             " |aφ| ≤ 1.5 to all of it, resolution 32–512, rolled 4a at 1 m/s in 3 to 12 updates; the steady solver the"
+             " reference (1e-8 rigid, 1e-6 eq. 4b, its estimate the slack). Every estimate must bound its error.", "",
+             "| seed | points | compared | estimate below the error | largest (error − reference's) / estimate | where |",
+             "|---|---|---|---|---|---|"]
+    for r in runs:
+        w = r.get("worst") or {}
+        lines.append("| %d | %d | %d | %d | %.2f | %s, %s, a %.1f mm, resolution %s, %s updates |" % (
+            r["seed"], r["points"], r["compared"], r["estimate_below_error"],
+            r["max_error_beyond_reference_over_estimate"], w.get("pressure", "–"), w.get("law", "–"),
+            1e3 * w.get("a", 0.0), w.get("resolution", "–"), w.get("updates", "–")))
+    lines.append("")
+    return lines
+
+
 def replay_streams_section(streams):
     """The recorded manoeuvres through bag_analyze's path (replay_benchmark --streams): a robot's stream, not the demo's
     lap, with the parameter file's settings and each brush model; the fastest of its replays."""
@@ -1259,6 +1279,8 @@ def main():
     ap.add_argument("--sweep", help="stream_sweep.py output: random robots on random streams")
     ap.add_argument("--calibration", help="calibration_accuracy output: the fit over seeds")
     ap.add_argument("--work-units", help="work_units output: time per counted unit of work, every model and law")
+    ap.add_argument("--held-transient", nargs="+", default=[],
+                    help="model_accuracy --held-transient outputs: the transient model's estimate at held inputs")
     ap.add_argument("--docs", required=True)
     a = ap.parse_args()
     with open(a.bench) as f:
@@ -1332,6 +1354,12 @@ def main():
     if a.work_units:
         with open(a.work_units) as f:
             lines += work_units_section(json.load(f))
+    if a.held_transient:
+        runs = []
+        for path in a.held_transient:
+            with open(path) as f:
+                runs.append(json.load(f))
+        lines += held_transient_section(runs)
     if a.calibration:
         with open(a.calibration) as f:
             lines += calibration_section(json.load(f))
