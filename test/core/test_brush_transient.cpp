@@ -795,6 +795,26 @@ TEST(BrushTransient, OneLongUpdateIsAsAccurateAsItsEstimate)
   }
 }
 
+// The transient model at held inputs (sigma, phi at V_r [m/s], `updates` of dt each) at each resolution, within its
+// estimate of the steady solver's forces at 1e-8
+void expectWithinEstimateAtHeldInputs(BrushParameters p, const Eigen::Vector2d& sigma, double phi, double V_r,
+                                      int updates, double dt, std::initializer_list<int> resolutions)
+{
+  const BrushForces ref = BrushSteady(p).evaluate(sigma, phi, phi, 0.0, 1e-8);
+  const ContactKinematics k = ContactKinematics::fromSlips(sigma, phi, 1.0, V_r);
+  for (const int resolution : resolutions)
+  {
+    p.resolution = resolution;
+    BrushTransient model(p);
+    BrushForces f;
+    for (int m = 0; m < updates; ++m)
+      f = model.update(k, dt);
+    const double error = forceDistance(f, ref, p);
+    std::printf("resolution %d: error %.3g, estimate %.3g\n", resolution, error, f.error_estimate);
+    EXPECT_LE(error, f.error_estimate + ref.error_estimate) << "resolution " << resolution;
+  }
+}
+
 TEST(BrushTransient, AHertzianTrailingLayerThinnerThanASpacingIsInTheSum)
 {
   // Sweep seed 9018's robot (a = 7.8 mm, k = 1.78e8 N/m^3, 30.7 kg, mu = 1.05, Hertzian, the rigid law; its weave at
@@ -810,21 +830,8 @@ TEST(BrushTransient, AHertzianTrailingLayerThinnerThanASpacingIsInTheSum)
   p.mu = 1.0515832164397025;
   p.pressure = PressureDistribution::Hertzian;
   p.sliding_law = SlidingLaw::Rigid;
-  const Eigen::Vector2d sigma(0.001, 0.055);
-  const double phi = 7.75;
-  const BrushForces ref = BrushSteady(p).evaluate(sigma, phi, phi, 0.0, 1e-8);
-  const ContactKinematics k = ContactKinematics::fromSlips(sigma, phi, 1.0, 1.546);
-  for (const int resolution : { 168, 184, 224 })
-  {
-    p.resolution = resolution;
-    BrushTransient model(p);
-    BrushForces f;
-    for (int m = 0; m < 4; ++m)
-      f = model.update(k, 0.01);  // two transits an update
-    const double error = forceDistance(f, ref, p);
-    std::printf("resolution %d: error %.3g, estimate %.3g\n", resolution, error, f.error_estimate);
-    EXPECT_LE(error, f.error_estimate + ref.error_estimate) << "resolution " << resolution;
-  }
+  // two transits an update
+  expectWithinEstimateAtHeldInputs(p, { 0.001, 0.055 }, 7.75, 1.546, 4, 0.01, { 168, 184, 224 });
 }
 
 TEST(BrushTransient, AParabolicTrailingLayerThinnerThanASpacingIsInTheSum)
@@ -840,21 +847,9 @@ TEST(BrushTransient, AParabolicTrailingLayerThinnerThanASpacingIsInTheSum)
   p.mu = 0.8913128104066002;
   p.pressure = PressureDistribution::Parabolic;
   p.sliding_law = SlidingLaw::Rigid;
-  const Eigen::Vector2d sigma(0.00012563885728140246, -0.00060843383912506);
-  const double phi = -0.00258180195856906 / p.a;
-  const BrushForces ref = BrushSteady(p).evaluate(sigma, phi, phi, 0.0, 1e-8);
-  const ContactKinematics k = ContactKinematics::fromSlips(sigma, phi, 1.0, 1.0);
-  for (const int resolution : { 384, 448 })
-  {
-    p.resolution = resolution;
-    BrushTransient model(p);
-    BrushForces f;
-    for (int m = 0; m < 5; ++m)
-      f = model.update(k, 0.8 * p.a);  // 4a in 5 updates at 1 m/s
-    const double error = forceDistance(f, ref, p);
-    std::printf("resolution %d: error %.3g, estimate %.3g\n", resolution, error, f.error_estimate);
-    EXPECT_LE(error, f.error_estimate + ref.error_estimate) << "resolution " << resolution;
-  }
+  // 4a in 5 updates at 1 m/s
+  expectWithinEstimateAtHeldInputs(p, { 0.00012563885728140246, -0.00060843383912506 }, -0.00258180195856906 / p.a,
+                                   1.0, 5, 0.8 * p.a, { 384, 448 });
 }
 
 TEST(BrushTransient, HeldInputsGiveTheSameAnswerHoweverTheTravelIsSplit)
