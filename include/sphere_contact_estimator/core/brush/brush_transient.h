@@ -55,7 +55,9 @@ enum class TransientStepping
 /// field ends: a plain lattice sum across such a jump is first order, so each bristle records how far it has
 /// travelled since its onset and the jump there, and the sum corrects the part of its cell (along its
 /// motion) that lies on the other side of the jump or of the edge. That makes the sum second order where the
-/// lattice rows follow the rolling direction, as in the estimator's contact frame.
+/// lattice rows follow the rolling direction, as in the estimator's contact frame. The last cell before the trailing
+/// edge also holds the layer where the bound falls below its adhering bristle's |u| and the bristle slides, located in
+/// closed form (trailingLayer): narrower than a spacing, it is an error no sub-lattice sees.
 ///
 /// Without tilt, while the lattice rows follow the rolling direction (as they do unless the frame was turned with a
 /// bristle state in the patch), the rows are bristle paths and the sum across them is a midpoint rule: a re-adhering
