@@ -11,6 +11,7 @@
 #include "brush_closed_form.h"
 #include "sphere_contact_estimator/core/brush/brush_forces.h"
 #include "sphere_contact_estimator/core/brush/brush_parameters.h"
+#include "sphere_contact_estimator/core/brush/contact_kinematics.h"
 
 namespace sphere_contact_estimator::test
 {
@@ -49,6 +50,24 @@ struct RigidSearchInputs
   Eigen::Vector2d sigma{ -0.0815, 0.0864 };
   double a_phi = -0.959;  ///< phi a; chi_gamma 0.9 (phi_gamma = 0.9 phi, phi_psi = 0.1 phi)
 };
+
+/// The robot and inputs of a held-input check where a bristle past the spin pole, more than a right angle off its drive,
+/// re-adheres within an update and slides again (a = 16 mm, parabolic, eq. 4b; a phi = -0.813 at 1 m/s): the tests of
+/// a long stiff step through a re-adhesion
+inline BrushParameters spinPoleRobot()
+{
+  BrushParameters p;
+  p.sliding_law = SlidingLaw::Coulomb;
+  p.a = 0.01596;
+  p.k = 5.18e7;
+  p.F_z = 56.1;
+  p.mu = 1.0;
+  return p;
+}
+inline ContactKinematics spinPoleKinematics(const BrushParameters& p)
+{
+  return ContactKinematics::fromSlips({ -0.00973, -0.00487 }, -0.813 / p.a, 1.0, 1.0);
+}
 
 /// Both laws, for tests of what holds under either.
 constexpr SlidingLaw kSlidingLaws[] = { SlidingLaw::Coulomb, SlidingLaw::Rigid };

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 // Package
+#include "brush_test_support.h"
 #include "lattice/bristle_advance.h"
 #include "lattice/rim_integral.h"
 #include "sphere_contact_estimator/core/numerics/quadrature_rules.h"
@@ -223,13 +224,8 @@ TEST(BristleAdvance, AWholeMessagePastASpinPoleFromBeyondARightAngle)
   // 10.64 mm its return mapping in one step had adhered through that (the two half steps agreeing with it) and come out
   // 17 degrees off with an estimate of a hundredth of that. Held inputs: the same path in 100 updates (each short
   // against the pull) must agree within the two estimates.
-  BrushParameters p;
-  p.sliding_law = SlidingLaw::Coulomb;
-  p.a = 0.01596;
-  p.k = 5.18e7;
-  p.F_z = 56.1;
-  p.mu = 1.0;
-  const ContactKinematics kin = ContactKinematics::fromSlips({ -0.00973, -0.00487 }, -0.813 / p.a, 1.0, 1.0);
+  const BrushParameters p = test::spinPoleRobot();
+  const ContactKinematics kin = test::spinPoleKinematics(p);
   const double c = p.mu * peakFactor(p.pressure) * p.F_z / (M_PI * p.a * p.a) / p.k;
   const double tolerance = 0.2 * c / (448.0 * 448.0);  // BrushTransient::timeTolerance at resolution 448
   const lattice::BristleAdvance advance(p, kin, tolerance);

@@ -860,13 +860,9 @@ TEST(BrushTransient, HeldInputsGiveTheSameAnswerHoweverTheTravelIsSplit)
   // the spin pole took a whole update in one return mapping that adhered through a re-adhesion (test_bristle_advance:
   // AWholeMessagePastASpinPoleFromBeyondARightAngle), and the forces of 6 stood 1.7e-4 of mu F_z off those of 4 at
   // resolutions 128 to 512, 2.5 times the estimate at 512.
-  BrushParameters p;
-  p.a = 0.01596;
-  p.k = 5.18e7;
-  p.F_z = 56.1;
-  p.mu = 1.0;
+  BrushParameters p = test::spinPoleRobot();
   p.resolution = 128;
-  const ContactKinematics k = ContactKinematics::fromSlips({ -0.00973, -0.00487 }, -0.813 / p.a, 1.0, 1.0);
+  const ContactKinematics k = test::spinPoleKinematics(p);
   const auto rolled = [&](int updates) {
     BrushTransient model(p);
     BrushForces f;

@@ -1058,7 +1058,7 @@ Eigen::Vector2d BrushTransient::trailingLayer(const Eigen::Vector2d& x, const Ei
   const double inv_a2 = 1.0 / (p_.a * p_.a);
   const Eigen::Vector2d x_e = x + m.ahead * m.e;
   const double g1 = 2.0 * x_e.dot(m.e) * inv_a2, g2 = -inv_a2;
-  const double c = p_.mu / p_.k * peakFactor(p_.pressure) * p_.F_z / (M_PI * p_.a * p_.a);  // the bound at the centre
+  const double c = p_.mu / p_.k * p_.qz(0.0);  // the bound at the centre
   if (!(g1 > 0.0) || !(c > 0.0))
     return Eigen::Vector2d::Zero();
   // the layer: from the edge to where the bound c f(t) is |u| (t = (|u| / c)^(2 / m)), at most to the bristle (the
