@@ -51,6 +51,7 @@ EstimatorSettings settingsFromConfig(const ContactEstimatorConfig& c)
   s.effective_length = c.effective_length;
   s.propagate_covariance = c.propagate_covariance;
   s.covariance_period = c.covariance_period;
+  s.hold_within_noise = c.hold_within_noise;
   s.auto_noise_fraction = c.auto_noise_fraction;
   return s;
 }

@@ -15,7 +15,8 @@ static_assert(ContactEstimate::FLAG_TIME_JUMP_RESET == estimate_flags::kTimeJump
               ContactEstimate::FLAG_HEADING_RESET == estimate_flags::kHeadingReset &&
               ContactEstimate::FLAG_MOTION_WITHIN_NOISE == estimate_flags::kMotionWithinNoise &&
               ContactEstimate::FLAG_STAMP_OUT_OF_ORDER == estimate_flags::kStampOutOfOrder &&
-              ContactEstimate::FLAG_NOT_ROLLING == estimate_flags::kNotRolling);
+              ContactEstimate::FLAG_NOT_ROLLING == estimate_flags::kNotRolling &&
+              ContactEstimate::FLAG_MOTION_HELD == estimate_flags::kMotionHeld);
 static_assert(ContactEstimate::BRUSH_FLAG_STANDSTILL == brush_flags::kStandstill &&
               ContactEstimate::BRUSH_FLAG_NO_STEADY_STATE_TILT == brush_flags::kNoSteadyStateTilt &&
               ContactEstimate::BRUSH_FLAG_LINEAR_SATURATED == brush_flags::kLinearSaturated &&

@@ -59,6 +59,7 @@ TEST(Parameters, CfgDefaultsAreTheCoreDefaults)
   SAME(propagate_covariance);
   SAME(auto_noise_fraction);
   SAME(covariance_period);
+  SAME(hold_within_noise);
 #undef SAME
 }
 

@@ -1235,8 +1235,10 @@ bool BrushTransient::adhesionResponse(AdhesionResponse& response, long& work, do
     }
     if (!sliding)
       F += u;  // (the roll moves the adhering field with the roots)
-    const double un = u.norm();
-    if (sliding || (band > 0.0 && un > mu_over_k * cap.qz(r2) - band))
+    const double un = u.norm(), bound = mu_over_k * cap.qz(r2);
+    // (undeformed inside the patch, as a lattice no motion has reached yet, or one whose noise was held: it adheres, and
+    // the noise first moves it with the drive, in whichever direction; a band wider than its bound does not hold it)
+    if ((sliding || (band > 0.0 && un > bound - band)) && !(un == 0.0 && bound > 0.0))
     {
       // held by its bound (the noise's reflected walk reaches it within the band, StandstillCovariance::band)
       if (!(un > 0.0))

@@ -998,7 +998,10 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
   EstimatorSettings base = settings;
   base.accuracy_target = std::min(settings.accuracy_target, options.accuracy_target);
   base.auto_noise_fraction = 0.0;    // the models' accuracy is the fit's, not the noise's
-  base.propagate_covariance = true;  // (for the flag of a parked robot, kMotionWithinNoise)
+  base.propagate_covariance = true;
+  // each message's forces are held against its IMU sample: every motion moves the bristles as measured (those within
+  // the noise stay out of the fit anyway, kMotionWithinNoise)
+  base.hold_within_noise = false;
   std::vector<FitParameter> fitted;
   for (int j = 0; j < kParameters; ++j)
     if (options.fit[j] && !(static_cast<FitParameter>(j) == FitParameter::SurfaceDamping &&

@@ -26,6 +26,14 @@ double wrap(double angle)
   return std::remainder(angle, 2.0 * pi);
 }
 
+
+// the five twist components the models use (motion_noise.h), ROS ground frame
+UsedTwist usedTwist(const EstimatorInput& in)
+{
+  UsedTwist x;
+  x << in.v_contact.x(), in.v_contact.y(), in.omega.x(), in.omega.y(), in.omega.z();
+  return x;
+}
 }  // namespace
 
 bool ContactEstimateData::valid() const
@@ -78,6 +86,7 @@ void ContactEstimator::configure(const EstimatorSettings& next)
   }
   settings_ = next;
   held_covariance_.valid = false;
+  hold_.clear();  // (motion within the noise: what it held is not worth a step under new settings)
   adopt();
 }
 
@@ -109,6 +118,7 @@ void ContactEstimator::reset()
   not_rolling_time_ = 0.0;
   held_covariance_.valid = false;
   walk_.restart(Eigen::Matrix3d::Zero());  // the model's own start
+  hold_.clear();
   if (brush_)
     brush_->reset();
 }
@@ -158,12 +168,13 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   // A model that throws has a defect, which no input should reach; one message answered without its forces, flagged,
   // and the model's state reset, serves a robot better than a node that dies (or a replay that stops) at it.
   judgeMotion(in, o);
+  const MotionHold::Decision hold = holdMotion(in, o);
   try
   {
     propagateBrushCovariance(in, speed, o);
-    runBrush(kin, slips, o.dt, in.omega.z(), o);
-    if (o.covariance.brush_method == CovarianceMethod::RandomWalk)
-      walkBrushCovariance(in, o);  // this message's share, through the state the model has just advanced
+    advanceBrush(in, kin, slips, hold, o);
+    if (o.covariance.brush_method == CovarianceMethod::RandomWalk)  // this message's share, through the state as it is now
+      walkBrushCovariance(in, o);
   }
   catch (const std::exception& error)
   {
@@ -175,6 +186,7 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
     if (brush_)
       brush_->reset();
     walk_.restart(Eigen::Matrix3d::Zero());
+    hold_.clear();
   }
   try
   {
@@ -221,6 +233,7 @@ double ContactEstimator::advanceClock(double stamp, std::uint32_t& flags)
       if (brush_)
         brush_->reset();
       walk_.restart(Eigen::Matrix3d::Zero());
+      hold_.clear();
       turn_rate_ = 0.0;
       was_rolling_ = false;
       flags |= estimate_flags::kGapReset;
@@ -278,15 +291,8 @@ void ContactEstimator::followHeading(const Eigen::Vector2d& V_r, double speed, d
 ContactKinematics ContactEstimator::contactKinematics(const EstimatorInput& in, double psi_dot, ContactEstimateData& o,
                                                      Slips& sl) const
 {
-  // ground -> contact frame (yaw by the heading) -> paper frame
-  const double c = std::cos(heading_), s = std::sin(heading_);
-  const auto toContact = [c, s](const Eigen::Vector3d& x) {
-    return Eigen::Vector3d(c * x.x() + s * x.y(), -s * x.x() + c * x.y(), x.z());
-  };
+  const ContactKinematics kin = paperKinematics(in.omega, in.v_contact, psi_dot);
   using namespace paper_frame;
-  const ContactKinematics kin = ContactKinematics::fromWheel(fromRos(toContact(in.omega)),
-                                                             fromRos(Eigen::Vector2d(toContact(in.v_contact).head<2>())),
-                                                             settings_.rolling_radius, zFromRos(psi_dot));
   sl = computeSlips(kin, settings_.standstill_speed);
   o.sliding_velocity = toRos(kin.V_s);
   o.slips_defined = sl.defined;
@@ -297,6 +303,71 @@ ContactKinematics ContactEstimator::contactKinematics(const EstimatorInput& in, 
   o.tilt_ratio = sl.chi_gamma.value_or(1.0);
   o.epsilon = sl.epsilon;
   return kin;
+}
+
+ContactKinematics ContactEstimator::paperKinematics(const Eigen::Vector3d& omega, const Eigen::Vector3d& v_contact,
+                                                   double psi_dot) const
+{
+  // ground -> contact frame (yaw by the heading) -> paper frame
+  const double c = std::cos(heading_), s = std::sin(heading_);
+  const auto toContact = [c, s](const Eigen::Vector3d& x) {
+    return Eigen::Vector3d(c * x.x() + s * x.y(), -s * x.x() + c * x.y(), x.z());
+  };
+  using namespace paper_frame;
+  return ContactKinematics::fromWheel(fromRos(toContact(omega)), fromRos(Eigen::Vector2d(toContact(v_contact).head<2>())),
+                                      settings_.rolling_radius, zFromRos(psi_dot));
+}
+
+MotionHold::Decision ContactEstimator::holdMotion(const EstimatorInput& in, ContactEstimateData& o)
+{
+  if (!settings_.hold_within_noise || !brush_)
+  {
+    hold_.clear();
+    return MotionHold::Decision::Advance;
+  }
+  // motion_to_noise is negative (unknown) without a usable covariance: nothing is held then, what was is released
+  const Eigen::Matrix<double, 5, 5> S = o.motion_to_noise >= 0.0 ? usedTwistCovariance(in.twist_covariance)
+                                                                 : Eigen::Matrix<double, 5, 5>::Zero();
+  const MotionHold::Decision d = hold_.offer(usedTwist(in), S, o.dt, o.motion_to_noise);
+  if (d == MotionHold::Decision::Hold)
+    o.flags |= estimate_flags::kMotionHeld;
+  return d;
+}
+
+void ContactEstimator::advanceBrush(const EstimatorInput& in, const ContactKinematics& kin, const Slips& slips,
+                                    MotionHold::Decision hold, ContactEstimateData& o)
+{
+  if (hold == MotionHold::Decision::Hold)
+  {
+    runBrush(kin, slips, 0.0, in.omega.z(), o);  // the state as the motion before the hold left it
+    // nothing moves, so nothing slides (eq. 4b without a drive: v_s = 0), whatever the last motion left on the bounds
+    o.brush.sliding_fraction = 0.0;
+    return;
+  }
+  if (hold == MotionHold::Decision::Release)
+  {
+    // the held motion, this message's included, in one step: its mean twist over its time, in the frame as it stands
+    // (the bristles respond to the path, not its pace: eq. 1 is linear in the velocities)
+    const UsedTwist m = hold_.meanTwist();
+    EstimatorInput mean = in;
+    mean.omega = Eigen::Vector3d(m(2), m(3), m(4));
+    mean.v_contact = Eigen::Vector3d(m(0), m(1), 0.0);
+    const Eigen::Vector2d V_r(mean.omega.y() * settings_.rolling_radius, -mean.omega.x() * settings_.rolling_radius);
+    const double duration = hold_.duration();
+    hold_.clear();
+    // (a mean of acceptable twists is finite and below the speed of light, but its slips may pass a double's range
+    // where standstill_speed is tinier than the noise: then this message's own step, as without the hold)
+    if (slipsRepresentable(mean, V_r, V_r.norm()))
+    {
+      const double psi_dot = settings_.tilt_ratio_source == TiltRatioSource::Fixed ?
+                                 (1.0 - settings_.tilt_ratio) * mean.omega.z() :
+                                 turn_rate_;
+      const ContactKinematics held = paperKinematics(mean.omega, mean.v_contact, psi_dot);
+      runBrush(held, computeSlips(held, settings_.standstill_speed), duration, in.omega.z(), o);
+      return;
+    }
+  }
+  runBrush(kin, slips, o.dt, in.omega.z(), o);
 }
 
 void ContactEstimator::clearBrush(ContactEstimateData& o) const
@@ -371,12 +442,11 @@ void ContactEstimator::judgeRolling(const EstimatorInput& in, double speed, Cont
 void ContactEstimator::judgeMotion(const EstimatorInput& in, ContactEstimateData& o) const
 {
   // a parked robot's odometry is its noise: said so, instead of letting its forces read as measured sliding
+  // (a judgement of the input against its own declared noise: with or without the covariance carried to the outputs)
   o.motion_to_noise = -1.0;
-  if (!settings_.propagate_covariance || in.twist_covariance_status != CovarianceStatus::Ok)
+  if (in.twist_covariance_status != CovarianceStatus::Ok)
     return;
-  UsedTwist x;
-  x << in.v_contact.x(), in.v_contact.y(), in.omega.x(), in.omega.y(), in.omega.z();
-  o.motion_to_noise = motionToNoise(x, usedTwistCovariance(in.twist_covariance));
+  o.motion_to_noise = motionToNoise(usedTwist(in), usedTwistCovariance(in.twist_covariance));
   if (o.motion_to_noise >= 0.0 && o.motion_to_noise <= kMotionWithinNoise)
     o.flags |= estimate_flags::kMotionWithinNoise;
 }
@@ -509,7 +579,8 @@ void ContactEstimator::walkBrushCovariance(const EstimatorInput& in, ContactEsti
     c.status = CovarianceStatus::Undefined;
   };
   // Spinning in place most bristles slide, and a sliding bristle forgets the noise it integrated: a walk would
-  // overstate the forces' spread (2-8 times in test_uncertainty). No covariance here.
+  // overstate the forces' spread (2-8 times in test_uncertainty). No covariance here. (Held, nothing slides: the walk
+  // says what the held noise could do to the bristles on their bounds.)
   if (o.brush.sliding_fraction > StandstillCovariance::kSlidingShare)
   {
     undefined();

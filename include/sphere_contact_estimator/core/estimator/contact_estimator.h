@@ -15,6 +15,7 @@
 #include "sphere_contact_estimator/core/brush/brush_model.h"
 #include "sphere_contact_estimator/core/estimator/estimate_covariance.h"
 #include "sphere_contact_estimator/core/estimator/estimator_settings.h"
+#include "sphere_contact_estimator/core/estimator/motion_hold.h"
 #include "sphere_contact_estimator/core/estimator/standstill_covariance.h"
 #include "sphere_contact_estimator/core/estimator/twist_covariance.h"
 #include "sphere_contact_estimator/core/rolling_resistance/cylinder_model.h"
@@ -56,6 +57,10 @@ constexpr std::uint32_t kStampOutOfOrder = 1u << 7;
 /// while the shell rolled at less than a tenth of its speed: a long skid, or, far more likely, `twist.angular`
 /// holds the body's yaw rate instead of the shell's angular velocity. (Bits 8 and 9 are the ROS layer's.)
 constexpr std::uint32_t kNotRolling = 1u << 10;
+/// hold_within_noise: this message's twist was within the noise, and the motion held since with it too (MotionHold):
+/// the bristles were not moved, the forces are the held state's, nothing slides (sliding_fraction 0), and the walk
+/// still widens the covariance.
+constexpr std::uint32_t kMotionHeld = 1u << 11;
 }  // namespace estimate_flags
 
 /// How long the centre may move while the shell does not roll before kNotRolling is set [s]: a braking skid is shorter.
@@ -99,8 +104,8 @@ struct ContactEstimateData
   double rolling_resistance_torque = 0.0;  ///< R F_R L [N m]
   /// How uncertain the outputs are because the odometry is (its twist covariance carried through the models).
   EstimateCovariance covariance;
-  /// The twist's distance from rest in units of its declared noise (motionToNoise; -1: no usable covariance or
-  /// propagate_covariance off). At most kMotionWithinNoise: flag kMotionWithinNoise.
+  /// The twist's distance from rest in units of its declared noise (motionToNoise; -1: no usable covariance, whether or
+  /// not propagate_covariance carries it to the outputs). At most kMotionWithinNoise: flag kMotionWithinNoise.
   double motion_to_noise = -1.0;
 
   std::uint32_t flags = 0;    ///< estimate_flags
@@ -183,6 +188,13 @@ private:
                      std::uint32_t& flags);
   ContactKinematics contactKinematics(const EstimatorInput& in, double psi_dot, ContactEstimateData& out,
                                       Slips& slips) const;
+  ContactKinematics paperKinematics(const Eigen::Vector3d& omega, const Eigen::Vector3d& v_contact,
+                                    double psi_dot) const;
+  // hold_within_noise: whether this message's twist moves the bristles (MotionHold), flagged kMotionHeld where not
+  MotionHold::Decision holdMotion(const EstimatorInput& in, ContactEstimateData& out);
+  // the brush model advanced as the hold decided: by this message, not at all, by the held motion first or alone
+  void advanceBrush(const EstimatorInput& in, const ContactKinematics& kin, const Slips& slips,
+                    MotionHold::Decision hold, ContactEstimateData& out);
   void clearBrush(ContactEstimateData& out) const;  // no brush answer: the configured model's, zero
   void runBrush(const ContactKinematics& kin, const Slips& slips, double dt, double omega_z, ContactEstimateData& out);
   void runRollingResistance(double speed, ContactEstimateData& out) const;
@@ -226,6 +238,8 @@ private:
   } held_covariance_;
   // the brush covariance while the slips are undefined, from the last one while they were
   StandstillCovariance walk_;
+  // the motion within the noise not yet applied to the bristles (hold_within_noise)
+  MotionHold hold_;
 };
 
 }  // namespace sphere_contact_estimator
