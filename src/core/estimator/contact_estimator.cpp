@@ -26,7 +26,6 @@ double wrap(double angle)
   return std::remainder(angle, 2.0 * pi);
 }
 
-
 // the five twist components the models use (motion_noise.h), ROS ground frame
 UsedTwist usedTwist(const EstimatorInput& in)
 {
@@ -325,7 +324,7 @@ MotionHold::Decision ContactEstimator::holdMotion(const EstimatorInput& in, Cont
     hold_.clear();
     return MotionHold::Decision::Advance;
   }
-  // motion_to_noise is negative (unknown) without a usable covariance: nothing is held then, what was is released
+  // motion_to_noise is negative (unknown) without a usable covariance: nothing is held then, and what was is let go
   const Eigen::Matrix<double, 5, 5> S = o.motion_to_noise >= 0.0 ? usedTwistCovariance(in.twist_covariance)
                                                                  : Eigen::Matrix<double, 5, 5>::Zero();
   const MotionHold::Decision d = hold_.offer(usedTwist(in), S, o.dt, o.motion_to_noise);

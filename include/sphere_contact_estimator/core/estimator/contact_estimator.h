@@ -129,7 +129,8 @@ struct ContactEstimateData
 /// the models, and the results converted back. The twist's covariance goes the same way (EstimateCovariance): the
 /// exact Jacobian of the kinematics to the slips, then the brush model's own propagation (force_covariance.h) and
 /// the cylinder's (cylinder_spread.h); the brush forces' spread is passed to the brush model first, so that auto
-/// spends no effort below the noise.
+/// spends no effort below the noise. A twist within the noise its covariance declares does not move the bristles
+/// (hold_within_noise, MotionHold): summed, it is applied once the sum leaves the noise.
 class ContactEstimator
 {
 public:
