@@ -142,6 +142,15 @@ TEST(MotionHold, AParkedRobotsForcesStayWithinTheirBandOfTheTruth)
           last_sd = std::sqrt(std::max(0.0, e.covariance.brush(2, 2)));
         }
         EXPECT_EQ(estimator.faults(), 0u) << estimator.lastFault();
+        if (rate == 100.0 && hold)
+        {
+          // a model without a state has nothing to hold: the steady one answers each message's inputs, never held
+          EstimatorSettings steady = robot(true);
+          steady.brush_model = BrushModelKind::Steady;
+          ContactEstimator stateless(steady);
+          for (const EstimatorInput& in : noisy)
+            EXPECT_FALSE(stateless.update(in)->flags & estimate_flags::kMotionHeld);
+        }
         std::printf("%g Hz, seed %u, hold %d: held %d of %d parked, outside the band at %d; at the end M_z %.4f, truth "
                     "%.4f, sd %.4f N m\n",
                     rate, seed, hold, held, parked, outside, last_mz, last_truth, last_sd);

@@ -319,7 +319,9 @@ ContactKinematics ContactEstimator::paperKinematics(const Eigen::Vector3d& omega
 
 MotionHold::Decision ContactEstimator::holdMotion(const EstimatorInput& in, ContactEstimateData& o)
 {
-  if (!settings_.hold_within_noise || !brush_)
+  // (only a model with a state has anything to hold: the linear and steady ones answer each message's inputs)
+  const bool state = brush_ && (brush_->kind() == BrushModelKind::Transient || brush_->kind() == BrushModelKind::Auto);
+  if (!settings_.hold_within_noise || !state)
   {
     hold_.clear();
     return MotionHold::Decision::Advance;
