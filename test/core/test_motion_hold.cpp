@@ -168,6 +168,33 @@ TEST(MotionHold, AParkedRobotsForcesStayWithinTheirBandOfTheTruth)
     }
 }
 
+TEST(MotionHold, ACovarianceFarTooLargeHoldsNoMovingRobot)
+{
+  // A source that declares 1e3 (m/s)^2 and (rad/s)^2 where it means "not measured": every twist is within that noise,
+  // but a patch that rolls, skids or spins faster than standstill_speed is not parked, and is never held; parked, it is.
+  ContactEstimator estimator(robot(true));
+  const auto declared = [](EstimatorInput in) {
+    in.twist_covariance = TwistCovariance::Identity() * 1e3;
+    return in;
+  };
+  int held = 0;
+  for (int i = 0; i < 200; ++i)
+  {
+    const double t = 100.0 + 0.01 * i;
+    // rolling at 0.5 m/s (R_r = 0.1: omega_y = 5), skidding at 0.2 m/s, spinning at 10 rad/s (0.1 m/s at the rim)
+    const EstimatorInput in = i < 100 ? message(t, Eigen::Vector3d(0.5, 0.0, 0.0), Eigen::Vector3d(0.0, 5.0, 0.0)) :
+                              i < 150 ? message(t, Eigen::Vector3d(0.2, 0.0, 0.0), Eigen::Vector3d::Zero()) :
+                                        message(t, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.0, 0.0, 10.0));
+    const ContactEstimateData& e = *estimator.update(declared(in));
+    EXPECT_LE(e.motion_to_noise, kMotionWithinNoise) << i;
+    held += (e.flags & estimate_flags::kMotionHeld) != 0;
+  }
+  EXPECT_EQ(held, 0);
+  const ContactEstimateData& parked = *estimator.update(declared(message(102.0, Eigen::Vector3d(0.001, 0.0, 0.0),
+                                                                         Eigen::Vector3d::Zero())));
+  EXPECT_TRUE(parked.flags & estimate_flags::kMotionHeld);
+}
+
 TEST(MotionHold, ACreepNoMessageShowsStillArrives)
 {
   // Parked after the spin, then creeping along x at 3 mm/s, 0.6 sd of V_C's noise per message: no message leaves the

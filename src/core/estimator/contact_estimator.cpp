@@ -319,11 +319,18 @@ ContactKinematics ContactEstimator::paperKinematics(const Eigen::Vector3d& omega
 
 MotionHold::Decision ContactEstimator::holdMotion(const EstimatorInput& in, ContactEstimateData& o)
 {
-  // (only a model with a state has anything to hold: the linear and steady ones answer each message's inputs)
+  // Only a model with a state has anything to hold (the linear and steady ones answer each message's inputs), and only
+  // a patch that moves nowhere faster than standstill_speed (V_r, and the drive |V_s| + |omega_z| a) is parked: a twist
+  // covariance declared far too large (1e3 where a source does not measure a component, say) then holds no rolling,
+  // skidding or spinning robot, it only widens their bands.
   const bool state = brush_ && (brush_->kind() == BrushModelKind::Transient || brush_->kind() == BrushModelKind::Auto);
-  if (!settings_.hold_within_noise || !state)
+  const double still = settings_.standstill_speed;
+  const Eigen::Vector2d V_r(in.omega.y() * settings_.rolling_radius, -in.omega.x() * settings_.rolling_radius);
+  const bool parked = V_r.norm() < still &&
+                      (in.v_contact.head<2>() - V_r).norm() + std::abs(in.omega.z()) * patch_radius_ < still;
+  if (!settings_.hold_within_noise || !state || !parked)
   {
-    hold_.clear();
+    hold_.clear();  // (moving: what was held, within its noise, is let go, as MotionHold::offer does)
     return MotionHold::Decision::Advance;
   }
   // motion_to_noise is negative (unknown) without a usable covariance: nothing is held then, and what was is let go

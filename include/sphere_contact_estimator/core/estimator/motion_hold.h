@@ -29,6 +29,9 @@ namespace sphere_contact_estimator
 /// less than the sum's noise bound, and the message keeps one update (a second one, for the sum, had doubled that
 /// message's work and left auto short of its budget for seconds along data/manoeuvre.bag).
 ///
+/// The estimator offers it only the messages of a parked patch (V_r and the drive |V_s| + |omega_z| a below
+/// standstill_speed): a covariance declared far too large then holds no robot that moves.
+///
 /// "Leaves the noise" is kHoldWithinNoise, not the flag's kMotionWithinNoise: the flag's 99.9 % point is passed by a
 /// parked robot's noise at one message in a thousand, and each such message would release the held sum, a step of
 /// the noise's size at once (along data/manoeuvre.bag's park, M_z fell from -0.209 to -0.081 N m in one message).
