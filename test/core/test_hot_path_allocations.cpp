@@ -116,12 +116,12 @@ std::vector<EstimatorInput> hostileStream(unsigned seed)
 // with hold_within_noise the start's held motion arrives in the frame the last pass left, auto's choices drifted
 // apart by 1e-3 of the work, and at one message the second pass sized a lattice the first never had.)
 long warmPassAllocations(const EstimatorSettings& settings, const std::vector<EstimatorInput>& stream,
-                           std::string& where, int* resolution_changes = nullptr)
+                         std::string& where, int* resolution_changes = nullptr)
 {
   ContactEstimator e(settings);
   const double offset = stream.back().stamp - stream.front().stamp + 10.0;  // on, not back: no reset at the start
   EstimatorInput in;
-  for (int pass = 0; pass < 2; ++pass)
+  for (int pass = 0; pass < 2; ++pass)  // (uncounted)
     for (const EstimatorInput& message : stream)
     {
       in = message;

@@ -998,6 +998,8 @@ FitResult fitContact(const std::vector<CalibrationSample>& samples, const Estima
   EstimatorSettings base = settings;
   base.accuracy_target = std::min(settings.accuracy_target, options.accuracy_target);
   base.auto_noise_fraction = 0.0;    // the models' accuracy is the fit's, not the noise's
+  // (the flag of a parked robot, kMotionWithinNoise, no longer needs it; kept, so that the covariance's share of the work
+  // budget, and with it the brush answers the fit is made of, stays as it was)
   base.propagate_covariance = true;
   // each message's forces are held against its IMU sample: every motion moves the bristles as measured (those within
   // the noise stay out of the fit anyway, kMotionWithinNoise)

@@ -143,8 +143,7 @@ bool ContactEstimator::acceptable(const EstimatorInput& in, const Eigen::Vector2
 
 const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
 {
-  const double R = settings_.rolling_radius;
-  const Eigen::Vector2d V_r(in.omega.y() * R, -in.omega.x() * R);  // pure rolling, ROS axes (docs/conventions.md)
+  const Eigen::Vector2d V_r = rollingVelocity(in.omega);
   const double speed = V_r.norm();
   if (!acceptable(in, V_r, speed))
     return nullptr;
@@ -156,8 +155,7 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   o.dt = advanceClock(in.stamp, o.flags);
   followHeading(V_r, speed, in.body_heading, o.dt, first, o.flags);
   judgeRolling(in, speed, o);
-  const double psi_dot =
-      settings_.tilt_ratio_source == TiltRatioSource::Fixed ? (1.0 - settings_.tilt_ratio) * in.omega.z() : turn_rate_;
+  const double psi_dot = turnRate(in.omega.z());
   o.heading = heading_;
   o.turn_rate = psi_dot;
   o.rolling_speed = speed;
@@ -167,7 +165,7 @@ const ContactEstimateData* ContactEstimator::update(const EstimatorInput& in)
   // A model that throws has a defect, which no input should reach; one message answered without its forces, flagged,
   // and the model's state reset, serves a robot better than a node that dies (or a replay that stops) at it.
   judgeMotion(in, o);
-  const MotionHold::Decision hold = holdMotion(in, o);
+  const MotionHold::Decision hold = holdMotion(in, V_r, o);
   try
   {
     propagateBrushCovariance(in, speed, o);
@@ -317,7 +315,19 @@ ContactKinematics ContactEstimator::paperKinematics(const Eigen::Vector3d& omega
                                       settings_.rolling_radius, zFromRos(psi_dot));
 }
 
-MotionHold::Decision ContactEstimator::holdMotion(const EstimatorInput& in, ContactEstimateData& o)
+Eigen::Vector2d ContactEstimator::rollingVelocity(const Eigen::Vector3d& omega) const
+{
+  const double R = settings_.rolling_radius;
+  return { omega.y() * R, -omega.x() * R };  // pure rolling, ROS axes (docs/conventions.md)
+}
+
+double ContactEstimator::turnRate(double omega_z) const
+{
+  return settings_.tilt_ratio_source == TiltRatioSource::Fixed ? (1.0 - settings_.tilt_ratio) * omega_z : turn_rate_;
+}
+
+MotionHold::Decision ContactEstimator::holdMotion(const EstimatorInput& in, const Eigen::Vector2d& V_r,
+                                                  ContactEstimateData& o)
 {
   // Only a model with a state has anything to hold (the linear and steady ones answer each message's inputs), and only
   // a patch that moves nowhere faster than standstill_speed (V_r, and the drive |V_s| + |omega_z| a) is parked: a twist
@@ -325,7 +335,6 @@ MotionHold::Decision ContactEstimator::holdMotion(const EstimatorInput& in, Cont
   // skidding or spinning robot, it only widens their bands.
   const bool state = brush_ && (brush_->kind() == BrushModelKind::Transient || brush_->kind() == BrushModelKind::Auto);
   const double still = settings_.standstill_speed;
-  const Eigen::Vector2d V_r(in.omega.y() * settings_.rolling_radius, -in.omega.x() * settings_.rolling_radius);
   const bool parked = V_r.norm() < still &&
                       (in.v_contact.head<2>() - V_r).norm() + std::abs(in.omega.z()) * patch_radius_ < still;
   if (!settings_.hold_within_noise || !state || !parked)
@@ -360,17 +369,14 @@ void ContactEstimator::advanceBrush(const EstimatorInput& in, const ContactKinem
     EstimatorInput mean = in;
     mean.omega = Eigen::Vector3d(m(2), m(3), m(4));
     mean.v_contact = Eigen::Vector3d(m(0), m(1), 0.0);
-    const Eigen::Vector2d V_r(mean.omega.y() * settings_.rolling_radius, -mean.omega.x() * settings_.rolling_radius);
+    const Eigen::Vector2d V_r = rollingVelocity(mean.omega);
     const double duration = hold_.duration();
     hold_.clear();
     // (a mean of acceptable twists is finite and below the speed of light, but its slips may pass a double's range
     // where standstill_speed is tinier than the noise: then this message's own step, as without the hold)
     if (slipsRepresentable(mean, V_r, V_r.norm()))
     {
-      const double psi_dot = settings_.tilt_ratio_source == TiltRatioSource::Fixed ?
-                                 (1.0 - settings_.tilt_ratio) * mean.omega.z() :
-                                 turn_rate_;
-      const ContactKinematics held = paperKinematics(mean.omega, mean.v_contact, psi_dot);
+      const ContactKinematics held = paperKinematics(mean.omega, mean.v_contact, turnRate(mean.omega.z()));
       runBrush(held, computeSlips(held, settings_.standstill_speed), duration, in.omega.z(), o);
       return;
     }

@@ -191,9 +191,11 @@ private:
                                       Slips& slips) const;
   ContactKinematics paperKinematics(const Eigen::Vector3d& omega, const Eigen::Vector3d& v_contact,
                                     double psi_dot) const;
+  Eigen::Vector2d rollingVelocity(const Eigen::Vector3d& omega) const;  // V_r = R_r (omega_y, -omega_x), ROS axes
+  double turnRate(double omega_z) const;  // psi_dot: (1 - chi_gamma) omega_z where fixed, else the heading's rate
   // hold_within_noise: whether this message's twist moves the bristles (MotionHold), flagged kMotionHeld where not
-  MotionHold::Decision holdMotion(const EstimatorInput& in, ContactEstimateData& out);
-  // the brush model advanced as the hold decided: by this message, not at all, by the held motion first or alone
+  MotionHold::Decision holdMotion(const EstimatorInput& in, const Eigen::Vector2d& V_r, ContactEstimateData& out);
+  // the brush model advanced as the hold decided: by this message, not at all, or by the held sum with it
   void advanceBrush(const EstimatorInput& in, const ContactKinematics& kin, const Slips& slips,
                     MotionHold::Decision hold, ContactEstimateData& out);
   void clearBrush(ContactEstimateData& out) const;  // no brush answer: the configured model's, zero

@@ -79,8 +79,9 @@ struct EstimatorSettings
   double covariance_period = 0.005;
   /// While the twist is within the noise its covariance declares (7 sd, MotionHold::kHoldWithinNoise) and the patch moves
   /// nowhere faster than standstill_speed, the transient and auto models' bristles are not moved by it: the motion is
-  /// summed and applied in one step once the sum leaves its own noise (MotionHold, a zero-velocity update). Off: every message's twist moves them, noise and all, which ratchets
-  /// the deflection off its bounds (a parked robot's M_z after spinning in place fell to a tenth in 3 s).
+  /// summed and applied in one step once the sum leaves its own noise (MotionHold, a zero-velocity update). Off: every
+  /// message's twist moves them, noise and all, which ratchets the deflection off its bounds (a parked robot's M_z
+  /// after spinning in place fell to a tenth in 3 s).
   bool hold_within_noise = true;
 
   /// F_z [N].
