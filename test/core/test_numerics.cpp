@@ -312,14 +312,20 @@ TEST(QuadratureRules, KronrodComplementIsInterpolatoryOnTheOtherEightNodes)
   const std::array<double, 15>& w = kronrodComplement();
   for (int i = 0; i < 15; ++i)
     if (r.wg[i] != 0.0)
+    {
       EXPECT_EQ(w[i], 0.0);
+    }
   for (int degree = 0; degree <= 8; ++degree)
   {
     const double error = momentError(w, r.x, degree);
     if (degree <= 7)
+    {
       EXPECT_NEAR(error, 0.0, 1e-13) << degree;
+    }
     else
+    {
       EXPECT_GT(std::abs(error), 1e-6);
+    }
   }
 }
 
@@ -335,24 +341,38 @@ TEST(QuadratureRules, Kronrod7AndItsGaussRule)
     const double k = momentError(r.wk, r.x, degree), g = momentError(r.wg, r.x, degree),
                  q = momentError(c, r.x, degree);
     if (degree <= 11)
+    {
       EXPECT_NEAR(k, 0.0, 1e-14) << degree;
+    }
     else
+    {
       EXPECT_GT(std::abs(k), 1e-6);
+    }
     if (degree <= 5)
+    {
       EXPECT_NEAR(g, 0.0, 1e-14) << degree;
+    }
     else if (degree == 6)
+    {
       EXPECT_GT(std::abs(g), 1e-6);
+    }
     if (degree <= 3)
+    {
       EXPECT_NEAR(q, 0.0, 1e-14) << degree;
+    }
     else if (degree == 4)
+    {
       EXPECT_GT(std::abs(q), 1e-6);
+    }
   }
   int gauss_nodes = 0;
   for (int i = 0; i < 7; ++i)
   {
     gauss_nodes += r.wg[i] != 0.0;
     if (r.wg[i] != 0.0)
+    {
       EXPECT_EQ(c[i], 0.0);
+    }
     EXPECT_EQ(r.x[i], -r.x[6 - i]);
   }
   EXPECT_EQ(gauss_nodes, 3);
