@@ -46,6 +46,7 @@
 #include "brush_coulomb_reference.h"
 #include "brush_marching.h"
 #include "noisy_history.h"
+#include "parked_streams.h"
 #include "sample_covariance.h"
 #include "whole_number.h"
 #include "sphere_contact_estimator/core/brush/brush_auto.h"
@@ -1130,7 +1131,6 @@ int parkedWalk(unsigned seed, int n, int draws, bool roll_noise, bool after_skid
 {
   std::mt19937_64 r(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  const auto logUniform = [&](double lo, double hi) { return std::exp(std::log(lo) + u(r) * std::log(hi / lo)); };
   std::vector<double> ratios, correlation_errors;
   Json lowest = nullptr, highest = nullptr, worst_correlation = nullptr;
   double lo = INFINITY, hi = -INFINITY;
@@ -1138,17 +1138,11 @@ int parkedWalk(unsigned seed, int n, int draws, bool roll_noise, bool after_skid
   for (int point = 0; point < n; ++point)
   {
     sce::EstimatorSettings s;
-    s.patch_radius = logUniform(0.004, 0.05);
-    s.bristle_stiffness = logUniform(3e7, 1e9);
-    s.robot_mass = logUniform(1.0, 40.0);
-    s.friction = 0.3 + 0.9 * u(r);
-    const sce::PressureDistribution pressures[3] = { sce::PressureDistribution::Parabolic,
-                                                     sce::PressureDistribution::Hertzian,
-                                                     sce::PressureDistribution::Uniform };
-    s.pressure = pressures[std::min(2, static_cast<int>(3.0 * u(r)))];
-    const double rates[3] = { 30.0, 100.0, 1000.0 };
-    const double rate = rates[std::min(2, static_cast<int>(3.0 * u(r)))];
-    const double scale = 0.5 + 1.5 * u(r);
+    double rate, scale;
+    sce::test::randomParkedRobot(r, s, rate, scale);
+    // the spread of the state the noise moves: with the hold (the default) a parked robot's noise moves nothing, and
+    // the realisations would not spread (parkedTruth checks the held band against the truth instead)
+    s.hold_within_noise = false;
     const int messages = std::min(300, static_cast<int>(0.5 * rate) + 2);
     double skid = 0.0;
     if (after_skid)
@@ -1285,10 +1279,104 @@ int parkedWalk(unsigned seed, int n, int draws, bool roll_noise, bool after_skid
   return 0;
 }
 
+// `model_accuracy --parked-truth SEED N`: the held estimate's band against the truth over N random robots
+// (test::ParkedStreams: the envelope, a noise-free motion, then a second parked with noise; docs/uncertainty.md, "Held:
+// the band about the truth"). At every parked message each of F_x, F_y and M_z must lie within 2 sd of the truth's
+// (the covariance published, where there is one; else equal to it). The same with hold_within_noise off, for contrast
+// (the noise ratchets the bristles off their bounds). Exit 1 where a message with the hold lies outside.
+int parkedTruth(unsigned seed, int n)
+{
+  std::mt19937_64 r(seed);
+  long messages = 0, held = 0, no_band = 0, outside[2] = { 0, 0 };
+  int robots_outside[2] = { 0, 0 };
+  // the largest miss beyond 2 sd and the largest error, in mu F_z (M_z: mu F_z a)
+  double worst_excess[2] = { 0.0, 0.0 }, worst_error[2] = { 0.0, 0.0 };
+  Json worst[2] = { nullptr, nullptr };
+  for (int point = 0; point < n; ++point)
+  {
+    const sce::test::ParkedStreams streams(r, seed * 1000003U + static_cast<unsigned>(point));
+    sce::EstimatorSettings s = streams.settings;
+    const double muFz = s.friction * s.verticalLoad();
+    for (int hold = 1; hold >= 0; --hold)
+    {
+      s.hold_within_noise = hold != 0;
+      sce::ContactEstimator e(s), truth(s);
+      bool robot_outside = false;
+      for (std::size_t k = 0; k < streams.noisy.size(); ++k)
+      {
+        const sce::ContactEstimateData o = *e.update(streams.noisy[k]);
+        const sce::ContactEstimateData& t = *truth.update(streams.clean[k]);
+        if (static_cast<int>(k) < streams.moving)
+          continue;
+        // the band the estimate publishes, whichever method (held: the walk; moved by the noise: also the
+        // linearised or unscented spread); none published counts as a band of zero width
+        const bool band = o.covariance.brush_method != sce::CovarianceMethod::None;
+        if (hold)
+        {
+          ++messages;
+          held += (o.flags & sce::estimate_flags::kMotionHeld) != 0;
+          no_band += !band;
+        }
+        const double error[3] = { o.brush.F_x - t.brush.F_x, o.brush.F_y - t.brush.F_y, o.brush.M_z - t.brush.M_z };
+        bool out = false;
+        for (int j = 0; j < 3; ++j)
+        {
+          const double scale_j = muFz * (j == 2 ? s.patch_radius : 1.0);
+          const double sd_j = band ? std::sqrt(std::max(0.0, o.covariance.brush(j, j))) : 0.0;
+          const double excess = (std::abs(error[j]) - 2.0 * sd_j) / scale_j;
+          out = out || excess > 1e-12;
+          worst_error[hold] = std::max(worst_error[hold], std::abs(error[j]) / scale_j);
+          if (excess > worst_excess[hold])
+          {
+            worst_excess[hold] = excess;
+            worst[hold] = Json{ { "point", point },
+                                { "kind", sce::test::ParkedStreams::kindName(streams.kind) },
+                                { "message", static_cast<long>(k) - streams.moving },
+                                { "component", j },
+                                { "error_over_mu_F_z", std::abs(error[j]) / scale_j },
+                                { "sd_over_mu_F_z", sd_j / scale_j },
+                                { "covariance_method", sce::toString(o.covariance.brush_method) },
+                                { "patch_radius", s.patch_radius },
+                                { "bristle_stiffness", s.bristle_stiffness },
+                                { "robot_mass", s.robot_mass },
+                                { "friction", s.friction },
+                                { "pressure", sce::toString(s.pressure) },
+                                { "rate", streams.rate },
+                                { "noise_scale", streams.noise_scale } };
+          }
+        }
+        outside[hold] += out;
+        robot_outside = robot_outside || out;
+      }
+      robots_outside[hold] += robot_outside;
+    }
+    if ((point + 1) % 50 == 0 || point + 1 == n)
+      std::cerr << "parked truth: " << point + 1 << " of " << n << "\n";
+  }
+  std::cout << Json{ { "seed", seed },
+                     { "robots", n },
+                     { "parked_messages", messages },
+                     { "held", held },
+                     { "without_band", no_band },
+                     { "outside_with_hold", outside[1] },
+                     { "robots_outside_with_hold", robots_outside[1] },
+                     { "largest_miss_beyond_2sd_over_mu_F_z_with_hold", worst_excess[1] },
+                     { "largest_error_over_mu_F_z_with_hold", worst_error[1] },
+                     { "worst_with_hold", worst[1] },
+                     { "outside_without_hold", outside[0] },
+                     { "robots_outside_without_hold", robots_outside[0] },
+                     { "largest_miss_beyond_2sd_over_mu_F_z_without_hold", worst_excess[0] },
+                     { "largest_error_over_mu_F_z_without_hold", worst_error[0] },
+                     { "worst_without_hold", worst[0] } }
+                   .dump(1)
+            << "\n";
+  return outside[1] == 0 ? 0 : 1;
+}
+
 int usage()
 {
   std::cerr << "usage: model_accuracy [N] | --sweep SEED N [--law coulomb|rigid] | --robot-histories SEED N "
-               "[RES [REF]] | --held-transient SEED N | --uncertainty | --parked-walk SEED N [DRAWS] [--without-roll-noise] [--after-skid]\n";
+               "[RES [REF]] | --held-transient SEED N | --uncertainty | --parked-walk SEED N [DRAWS] [--without-roll-noise] [--after-skid] | --parked-truth SEED N\n";
   return 2;
 }
 
@@ -1299,7 +1387,7 @@ int main(int argc, char** argv)
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h"))
   {
     std::cout << "usage: model_accuracy [N] | --sweep SEED N [--law coulomb|rigid] | --robot-histories SEED N "
-                 "[RES [REF]] | --held-transient SEED N | --uncertainty | --parked-walk SEED N [DRAWS] [--without-roll-noise] [--after-skid]\n"
+                 "[RES [REF]] | --held-transient SEED N | --uncertainty | --parked-walk SEED N [DRAWS] [--without-roll-noise] [--after-skid] | --parked-truth SEED N\n"
                  "  N: random operating points (default 1000); JSON on stdout, progress on stderr\n";
     return 0;
   }
@@ -1326,15 +1414,20 @@ int main(int argc, char** argv)
     return robotHistories(static_cast<unsigned>(*seed), static_cast<int>(*n), static_cast<int>(*res),
                           static_cast<int>(*ref));
   }
-  if (!args.empty() && args[0] == "--held-transient")
-  {
-    if (args.size() != 3)
-      return usage();
-    const std::optional<long> seed = wholeNumber(args[1], 0, 4294967295L), n = wholeNumber(args[2], 1, 1000000);
+  // MODE SEED N
+  const auto seedAndCount = [&](const char* mode, long max_n, int (*run)(unsigned, int)) -> std::optional<int> {
+    if (args.empty() || args[0] != mode)
+      return std::nullopt;
+    const std::optional<long> seed = args.size() == 3 ? wholeNumber(args[1], 0, 4294967295L) : std::nullopt;
+    const std::optional<long> n = args.size() == 3 ? wholeNumber(args[2], 1, max_n) : std::nullopt;
     if (!seed || !n)
       return usage();
-    return heldTransient(static_cast<unsigned>(*seed), static_cast<int>(*n));
-  }
+    return run(static_cast<unsigned>(*seed), static_cast<int>(*n));
+  };
+  if (const std::optional<int> status = seedAndCount("--held-transient", 1000000, heldTransient))
+    return *status;
+  if (const std::optional<int> status = seedAndCount("--parked-truth", 100000, parkedTruth))
+    return *status;
   if (!args.empty() && args[0] == "--parked-walk")
   {
     std::vector<std::string> rest(args.begin() + 1, args.end());

@@ -39,6 +39,8 @@ log "the parked robot's random-walk covariance against Monte Carlo over random r
 "$BIN/model_accuracy" --parked-walk 7 60 > "$OUT/parked_walk.json"
 log "the same parked after a lateral skid, the rear bristles on their bounds (docs/uncertainty.md; about 10 minutes)"
 "$BIN/model_accuracy" --parked-walk 11 60 --after-skid > "$OUT/parked_walk_after_skid.json"
+log "the held estimate against the noise-free truth at every parked message of 300 random robots (docs/uncertainty.md; under a minute)"
+"$BIN/model_accuracy" --parked-truth 13 300 > "$OUT/parked_truth.json"
 log "auto along the demo bag against the transient model at resolution 256 (about 3 minutes)"
 /usr/bin/python3 "$REPO/scripts/bag_model_accuracy.py" --bag-analyze "$BIN/bag_analyze" --reference-resolution 256 \
   --before "$REPO/bench/demo_bag_before.json" --noise-fraction 0.25 --out "$OUT/bag.json"
