@@ -1296,7 +1296,6 @@ int parkedTruth(unsigned seed, int n)
   {
     const sce::test::ParkedStreams streams(r, seed * 1000003U + static_cast<unsigned>(point));
     sce::EstimatorSettings s = streams.settings;
-    const double muFz = s.friction * s.verticalLoad();
     for (int hold = 1; hold >= 0; --hold)
     {
       s.hold_within_noise = hold != 0;
@@ -1308,45 +1307,36 @@ int parkedTruth(unsigned seed, int n)
         const sce::ContactEstimateData& t = *truth.update(streams.clean[k]);
         if (static_cast<int>(k) < streams.moving)
           continue;
-        // the band the estimate publishes, whichever method (held: the walk; moved by the noise: also the
-        // linearised or unscented spread); none published counts as a band of zero width
-        const bool band = o.covariance.brush_method != sce::CovarianceMethod::None;
+        const sce::test::ParkedStreams::Band band = streams.band(o, t);
         if (hold)
         {
           ++messages;
           held += (o.flags & sce::estimate_flags::kMotionHeld) != 0;
-          no_band += !band;
+          no_band += !band.published;
         }
-        const double error[3] = { o.brush.F_x - t.brush.F_x, o.brush.F_y - t.brush.F_y, o.brush.M_z - t.brush.M_z };
-        bool out = false;
-        for (int j = 0; j < 3; ++j)
+        Eigen::Index j = 0;
+        const double miss = band.largestMiss(&j);
+        outside[hold] += miss > 1e-12;
+        robot_outside = robot_outside || miss > 1e-12;
+        worst_error[hold] = std::max(worst_error[hold], band.error.cwiseAbs().maxCoeff());
+        if (miss > worst_excess[hold])
         {
-          const double scale_j = muFz * (j == 2 ? s.patch_radius : 1.0);
-          const double sd_j = band ? std::sqrt(std::max(0.0, o.covariance.brush(j, j))) : 0.0;
-          const double excess = (std::abs(error[j]) - 2.0 * sd_j) / scale_j;
-          out = out || excess > 1e-12;
-          worst_error[hold] = std::max(worst_error[hold], std::abs(error[j]) / scale_j);
-          if (excess > worst_excess[hold])
-          {
-            worst_excess[hold] = excess;
-            worst[hold] = Json{ { "point", point },
-                                { "kind", sce::test::ParkedStreams::kindName(streams.kind) },
-                                { "message", static_cast<long>(k) - streams.moving },
-                                { "component", j },
-                                { "error_over_mu_F_z", std::abs(error[j]) / scale_j },
-                                { "sd_over_mu_F_z", sd_j / scale_j },
-                                { "covariance_method", sce::toString(o.covariance.brush_method) },
-                                { "patch_radius", s.patch_radius },
-                                { "bristle_stiffness", s.bristle_stiffness },
-                                { "robot_mass", s.robot_mass },
-                                { "friction", s.friction },
-                                { "pressure", sce::toString(s.pressure) },
-                                { "rate", streams.rate },
-                                { "noise_scale", streams.noise_scale } };
-          }
+          worst_excess[hold] = miss;
+          worst[hold] = Json{ { "point", point },
+                              { "kind", sce::test::ParkedStreams::kindName(streams.kind) },
+                              { "message", static_cast<long>(k) - streams.moving },
+                              { "component", static_cast<int>(j) },
+                              { "error_over_mu_F_z", std::abs(band.error(j)) },
+                              { "sd_over_mu_F_z", band.sd(j) },
+                              { "covariance_method", sce::toString(o.covariance.brush_method) },
+                              { "patch_radius", s.patch_radius },
+                              { "bristle_stiffness", s.bristle_stiffness },
+                              { "robot_mass", s.robot_mass },
+                              { "friction", s.friction },
+                              { "pressure", sce::toString(s.pressure) },
+                              { "rate", streams.rate },
+                              { "noise_scale", streams.noise_scale } };
         }
-        outside[hold] += out;
-        robot_outside = robot_outside || out;
       }
       robots_outside[hold] += robot_outside;
     }

@@ -44,6 +44,39 @@ struct ParkedStreams
   int moving = 0;  // messages before the park
   std::vector<EstimatorInput> noisy, clean;
 
+  /// An estimate against the truth in the band it publishes: each of F_x, F_y and M_z's error and standard deviation
+  /// over its scale (mu F_z; M_z: mu F_z a). Any covariance method counts (held: the walk; moved by the noise: the
+  /// linearised or unscented spread); none published, a band of zero width.
+  struct Band
+  {
+    Eigen::Vector3d error, sd;
+    bool published = false;
+    /// the largest miss beyond 2 sd, over its scale (and its component): outside the band where above 1e-12
+    double largestMiss(Eigen::Index* component = nullptr) const
+    {
+      Eigen::Index j = 0;
+      const double miss = (error.cwiseAbs() - 2.0 * sd).maxCoeff(&j);
+      if (component)
+        *component = j;
+      return miss;
+    }
+  };
+
+  Band band(const ContactEstimateData& estimate, const ContactEstimateData& truth) const
+  {
+    const double muFz = settings.friction * settings.verticalLoad();
+    const Eigen::Vector3d scale(muFz, muFz, muFz * settings.patch_radius);
+    Band b;
+    b.published = estimate.covariance.brush_method != CovarianceMethod::None;
+    b.error = Eigen::Vector3d(estimate.brush.F_x - truth.brush.F_x, estimate.brush.F_y - truth.brush.F_y,
+                              estimate.brush.M_z - truth.brush.M_z)
+                  .cwiseQuotient(scale);
+    b.sd.setZero();
+    for (int j = 0; b.published && j < 3; ++j)
+      b.sd(j) = std::sqrt(std::max(0.0, estimate.covariance.brush(j, j))) / scale(j);
+    return b;
+  }
+
   static const char* kindName(int kind)
   {
     static const char* const names[3] = { "parked", "after_skid", "after_spin" };
