@@ -31,6 +31,9 @@ constexpr double kFrozenShare = 0.05;
 // at the tolerance of the coarsest lattice passes this only for a pull Lambda of a few hundredths (1 kHz). Rolling
 // pieces, which failed the check, made the 1 kHz recording 2 % dearer in all (callgrind) before this gate.
 constexpr double kFrozenTravel = 2e-3;
+// e^{-x}, the same number: past 746 it rounds to 0, which is returned without glibc's underflow path (errno and its
+// checks: about 1.5 % of perf's samples of Fig. 4's message at resolution 64, from stiff steps by the rim)
+inline double decay(double x) { return x > 746.0 ? 0.0 : std::exp(-x); }
 }  // namespace
 
 double BristleAdvance::coulombSlideStill(BristleState& s, const Eigen::Vector2d& x, double span) const
@@ -54,7 +57,7 @@ double BristleAdvance::coulombSlideStill(BristleState& s, const Eigen::Vector2d&
   const double cos_d = e.dot(e_w), sin_d = e_w.x() * e.y() - e_w.y() * e.x();
   if (cos_d < 0.0)
     return 0.0;
-  const double k = sin_d / (1.0 + cos_d) * std::exp(-wn * span / b), k2 = k * k;
+  const double k = sin_d / (1.0 + cos_d) * decay(wn * span / b), k2 = k * k;
   const double c = (1.0 - k2) / (1.0 + k2), sn = 2.0 * k / (1.0 + k2);
   s.u = b * (c * e_w + sn * Eigen::Vector2d(-e_w.y(), e_w.x()));
   return INFINITY;
@@ -117,8 +120,8 @@ bool BristleAdvance::coulombSlideFrozen(BristleState& s, const Eigen::Vector2d& 
   if (!(cos_reach > 0.0 && W_lo * cos_reach > B1))
     return false;
   // the relaxation (coulombSlideStill's closed form) from delta to delta_1: tan(delta_1 / 2) = tan(delta / 2) e^{-Lambda}
-  const double decay = std::exp(-lambda * span);
-  const double k = sin_d / (1.0 + cos_d) * decay, k2 = k * k;
+  const double relax = decay(lambda * span);
+  const double k = sin_d / (1.0 + cos_d) * relax, k2 = k * k;
   const double c = (1.0 - k2) / (1.0 + k2), sn = 2.0 * k / (1.0 + k2);
   // The carried error (an angle step_error / b0) shrinks by the frozen flow's contraction, the largest derivative of
   // delta -> delta_1 within the angle a carried direction may have, alpha = |delta| + that angle (below a right angle):
@@ -128,7 +131,7 @@ bool BristleAdvance::coulombSlideFrozen(BristleState& s, const Eigen::Vector2d& 
   if (cos_alpha > 0.0)
   {
     const double T2 = (1.0 - cos_alpha) / (1.0 + cos_alpha);
-    shrink = std::min(1.0, decay * (1.0 + T2) / (1.0 + T2 * decay * decay));
+    shrink = std::min(1.0, relax * (1.0 + T2) / (1.0 + T2 * relax * relax));
   }
   s.u = b1 * (c * e_w + sn * Eigen::Vector2d(-e_w.y(), e_w.x()));
   s.step_error = b1 * (carried * shrink + E);
@@ -250,7 +253,7 @@ bool BristleAdvance::exponentialStep(const Along& p, const Point& q0, const Poin
     if (m_ > 0 && (t.t0 + reach * (t.t1 + reach * t.t2) <= 0.0 || t.t0 - reach * (t.t1 - reach * t.t2) <= 0.0))
       nearRim(t, d, q0.w, cross, w0, wm, w1, Lambda, Lambda_error);
   }
-  const double E = std::exp(-Lambda);
+  const double E = decay(Lambda);
   const double T0 = c0 > -1.0 ? s0 / (1.0 + c0) : INFINITY;
   const auto solve = [&](double ratio, double& T1) {
     const double kappa = (1.0 - E) * 0.5 * ratio, c = kappa - (std::isfinite(T0) ? E * T0 : 0.0);
@@ -290,7 +293,7 @@ bool BristleAdvance::exponentialStep(const Along& p, const Point& q0, const Poin
   const double turn = (1.0 - E) * ((1.0 + T2_max) * r_term + r_max * T2_term);
   // (Lambda's error: e^{-(Lambda - dLambda)} - e^{-Lambda} = E (e^{dLambda} - 1) <= E dLambda (1 + dLambda) to 1)
   const double decay_error = Lambda_error <= 1.0 ? E * Lambda_error * (1.0 + Lambda_error)
-                                                 : std::exp(-std::max(0.0, Lambda - Lambda_error)) - E;
+                                                 : decay(std::max(0.0, Lambda - Lambda_error)) - E;
   out.error = 2.0 * q1.b * (turn + std::abs(T0) * decay_error);
   const double n = 1.0 / (1.0 + T1s), cd = (1.0 - T1s) * n, sd = 2.0 * T1 * n;
   out.e1 = Eigen::Vector2d(cd * h1.x() - sd * h1.y(), sd * h1.x() + cd * h1.y());
@@ -344,6 +347,10 @@ private:
   {
     double tau = 0.0;  // travel from the piece's start
     double step;       // the next step's length
+    // where the steps stop (the span's end or G's edge): a step that reaches it leaves the next one's length unasked
+    // (the controller's roots, waited for, held about 3 % of perf's samples of Fig. 4's message at resolution 64, where
+    // most sliding bristles take one step)
+    double end = INFINITY;
     bool to_event = false;  // a re-adhesion was located in a step: the step to it is being taken
     // An exponential step's estimate was above the tolerance along this piece. Over a stiff step its error is the lag's
     // change across the kernel's width 1 / lambda, which a shorter step barely reduces (cut to a fifth, the retries
@@ -409,6 +416,7 @@ inline double BristleAdvance::CoulombSlide::run()
   if (std::isnan(entry))
     return remainder(0.0);  // the work budget spent
   const double end = std::min(span_, entry);
+  walk.end = end;
   while (walk.tau < end)
   {
     if (steps_ >= max_steps_)
@@ -495,10 +503,10 @@ inline bool BristleAdvance::CoulombSlide::relaxedFirst(Walk& walk, const Point& 
   if (!(q0.b > 0.0 && q1.b > 0.0 && w0 > 0.0 && w1 > 0.0))
     return false;
   // omega / (2 lambda) = (w x w') b / (2 |w|^3), w x w' the same along the piece (w is affine in tau)
-  const double decay = 0.5 * d * (w0 / q0.b + w1 / q1.b);  // >= 1 - e^{-Lambda} to first order
+  const double decayed = 0.5 * d * (w0 / q0.b + w1 / q1.b);  // >= 1 - e^{-Lambda} to first order
   const double ratio_change = q1.b / (w1 * w1 * w1) - q0.b / (w0 * w0 * w0);
   Exponential x;
-  if (!(q1.b * decay * std::abs(turn_ * ratio_change) <= 0.5 * a_.tolerance_ &&
+  if (!(q1.b * decayed * std::abs(turn_ * ratio_change) <= 0.5 * a_.tolerance_ &&
         a_.exponentialStep(p_, q0, q1, w0, w1, e0, walk.tau, d, true, x) && x.error <= a_.tolerance_ && x.pushed))
     return false;
   takeExponential(walk, x, q0.b, q1, d);
@@ -515,7 +523,8 @@ inline void BristleAdvance::CoulombSlide::takeExponential(Walk& walk, const Expo
   walk.tau += d;
   walk.known = q1;
   walk.known_tau = walk.tau;
-  walk.step = x.error > 0.0 ? d * std::min(4.0, 0.9 * std::sqrt(a_.tolerance_ / x.error)) : 4.0 * d;
+  if (walk.tau < walk.end)
+    walk.step = x.error > 0.0 ? d * std::min(4.0, 0.9 * std::sqrt(a_.tolerance_ / x.error)) : 4.0 * d;
 }
 
 inline void BristleAdvance::CoulombSlide::magnus(Walk& walk, const Point& q0, const Point& q1,
@@ -639,7 +648,8 @@ inline bool BristleAdvance::CoulombSlide::stiff(Walk& walk, const Point& q0, con
     ended = walk.tau;
     return true;
   }
-  walk.step = error > 0.0 ? d * std::min(4.0, 0.9 * std::cbrt(a_.tolerance_ / error)) : 4.0 * d;
+  if (walk.tau < walk.end)
+    walk.step = error > 0.0 ? d * std::min(4.0, 0.9 * std::cbrt(a_.tolerance_ / error)) : 4.0 * d;
   return false;
 }
 
@@ -733,7 +743,8 @@ inline bool BristleAdvance::CoulombSlide::takeMagnus(Walk& walk, const Magnus& m
   walk.known = q1;
   walk.known_tau = walk.tau;
   // (the controller's exponent 1/4 rather than the estimate's 1/5: no pow in the loop)
-  walk.step = m.error > 0.0 ? d * std::min(5.0, 0.9 * std::sqrt(std::sqrt(a_.tolerance_ / m.error))) : 5.0 * d;
+  if (walk.tau < walk.end)
+    walk.step = m.error > 0.0 ? d * std::min(5.0, 0.9 * std::sqrt(std::sqrt(a_.tolerance_ / m.error))) : 5.0 * d;
   return false;
 }
 
