@@ -415,13 +415,12 @@ inline double BristleAdvance::CoulombSlide::run()
   steps_ += isolated;  // (work: counted as a step)
   if (std::isnan(entry))
     return remainder(0.0);  // the work budget spent
-  const double end = std::min(span_, entry);
-  walk.end = end;
-  while (walk.tau < end)
+  walk.end = std::min(span_, entry);
+  while (walk.tau < walk.end)
   {
     if (steps_ >= max_steps_)
       return remainder(walk.tau);
-    const double d = std::min(walk.step, end - walk.tau);
+    const double d = std::min(walk.step, walk.end - walk.tau);
     const Point q0 = walk.tau == walk.known_tau ? walk.known : a_.at(p_, walk.tau), q1 = a_.at(p_, walk.tau + d);
     if (faint(walk, q0, q1, d))
       continue;
@@ -464,7 +463,7 @@ inline double BristleAdvance::CoulombSlide::run()
     if (takeMagnus(walk, m, e0, d, ended))
       return ended;
   }
-  return end < span_ ? end : INFINITY;  // at G's edge it is pushed no more
+  return walk.end < span_ ? walk.end : INFINITY;  // at G's edge it is pushed no more
 }
 
 inline double BristleAdvance::CoulombSlide::remainder(double tau)
