@@ -1,7 +1,8 @@
 // One sliding bristle of the transient lattice under eq. (4b) (lattice::BristleAdvance): its step error against an
 // independent fine integration of the same bristle, on seeded random drives over the whole envelope (every pressure
 // law, rolling to 2 m/s, 1- and 10-ms messages) and of a robot spinning in place, parked or rolling slowly, over 1-ms
-// messages (the exponential step with its bounded error takes the non-stiff steps) and 10-ms ones (the stiff steps).
+// messages (the exponential step with its bounded error takes the non-stiff steps) and 10-ms ones (the stiff steps), and
+// of bristles entering at the leading edge (where the bound vanishes and the pull has its pole).
 // The lattice's published estimate is checked where it is published: test_brush_transient.
 
 // STL
@@ -110,6 +111,112 @@ Comparison compareWithFine(bool slow, unsigned seed, int count, double slow_mess
       ++out.frozen;
       out.worst_frozen = std::max(out.worst_frozen, ratio);
     }
+    if (ratio > 1.0)
+      std::printf("  case %d: error %.3g, its estimate %.3g (tolerance %.3g): V_r %.3g m/s, omega_z %.3g rad/s, |V_s| "
+                  "%.3g m/s, span %g s, resolution %d\n",
+                  n, (s.u - fine).norm(), s.step_error, tolerance, speed, kin.omega_z, kin.V_s.norm(), span,
+                  resolution);
+    out.worst = std::max(out.worst, ratio);
+    out.over += ratio > 1.0;
+    ++out.compared;
+  }
+  return out;
+}
+
+// From the leading edge: a bristle entering undeformed (u = 0 on the rim, where the bound vanishes) adheres, u(tau) = the
+// integral of the drive, tau (w(0) + w(tau)) / 2 (w is affine in tau), until |u| reaches the bound (a grid of `steps`
+// points, then bisection), then slides: its direction by classical Runge-Kutta over `steps` steps graded towards both
+// ends of the stretch (where the bound vanishes at the rim, the pull |w| / b has its pole). False where it re-adheres
+// within the span.
+bool fineFromRim(const lattice::BristleAdvance& a, const Eigen::Vector2d& x0, const Eigen::Vector2d& V_r, double span,
+                 int steps, Eigen::Vector2d& u_end)
+{
+  const auto x = [&](double tau) { return Eigen::Vector2d(x0 - tau * V_r); };
+  const auto adhered = [&](double tau) { return Eigen::Vector2d(0.5 * tau * (a.drive(x(0.0)) + a.drive(x(tau)))); };
+  const auto over = [&](double tau) { return adhered(tau).norm() > a.bound(x(tau)); };
+  double lo = 0.0, hi = -1.0;
+  for (int i = 1; i <= steps && hi < 0.0; ++i)
+  {
+    const double tau = span * i / steps;
+    if (over(tau))
+      hi = tau;
+    else
+      lo = tau;
+  }
+  if (hi < 0.0)
+    return false;  // adheres throughout: not this comparison's subject
+  for (int k = 0; k < 80; ++k)
+    (over(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+  const double onset = lo;
+  const Eigen::Vector2d u_on = adhered(onset), w_on = a.drive(x(onset));
+  double theta = u_on.norm() > 0.0 ? std::atan2(u_on.y(), u_on.x()) : std::atan2(w_on.y(), w_on.x());
+  const auto rate = [&](double tau, double th) {
+    const double b = a.bound(x(tau));
+    const Eigen::Vector2d w = a.drive(x(tau));
+    return b > 0.0 ? (-std::sin(th) * w.x() + std::cos(th) * w.y()) / b : 0.0;
+  };
+  const auto grade = [](double v) { return v * v * v * (10.0 - 15.0 * v + 6.0 * v * v); };
+  const double length = span - onset;
+  for (int i = 0; i < steps; ++i)
+  {
+    const double tau = onset + length * grade(double(i) / steps);
+    const double h = length * (grade(double(i + 1) / steps) - grade(double(i) / steps));
+    const double k1 = rate(tau, theta), k2 = rate(tau + 0.5 * h, theta + 0.5 * h * k1),
+                 k3 = rate(tau + 0.5 * h, theta + 0.5 * h * k2), k4 = rate(tau + h, theta + h * k3);
+    theta += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    const double t = tau + h, eps = 1e-3 * h;
+    const double b_dot = (a.bound(x(t + eps)) - a.bound(x(t - eps))) / (2.0 * eps);
+    if (i + 1 < steps && a.drive(x(t)).dot(Eigen::Vector2d(std::cos(theta), std::sin(theta))) - b_dot < 0.0)
+      return false;
+  }
+  u_end = a.bound(x(span)) * Eigen::Vector2d(std::cos(theta), std::sin(theta));
+  return true;
+}
+
+// `count` seeded random bristles entering at the leading edge (advance's at_rim: u = 0 there), under the drives of
+// compareWithFine (rolling from 0.1 mm/s to 2 m/s, spin up to 15 rad/s either way, sliding up to 0.3 m/s), over a 1- or
+// 10-ms message, at the tolerances of resolutions 16, 32 and 64; each against fineFromRim at 5000 steps, compared
+// where both slide at the end and the fine run at twice its steps agrees with it within a thousandth of the tolerance.
+Comparison compareFromRim(unsigned seed, int count, PressureDistribution pressure, double& worst_reference)
+{
+  BrushParameters p = EstimatorSettings{}.brushParameters();
+  p.sliding_law = SlidingLaw::Coulomb;
+  p.pressure = pressure;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double c = p.mu * peakFactor(p.pressure) * p.F_z / (M_PI * p.a * p.a) / p.k;
+  Comparison out;
+  worst_reference = 0.0;
+  for (int n = 0; n < count; ++n)
+  {
+    const double speed = std::pow(10.0, -4.0 + 4.3 * unit(rng)), heading = 2.0 * M_PI * unit(rng);
+    ContactKinematics kin;
+    kin.V_r = speed * Eigen::Vector2d(std::cos(heading), std::sin(heading));
+    const double slide = 0.3 * unit(rng), slide_heading = 2.0 * M_PI * unit(rng);
+    kin.V_s = slide * Eigen::Vector2d(std::cos(slide_heading), std::sin(slide_heading));
+    kin.omega_z = 30.0 * (unit(rng) - 0.5);
+    const int resolution = 16 << (n % 3);
+    const double tolerance = 0.2 * c / (resolution * resolution);  // BrushTransient::timeTolerance
+    const double span = n % 2 == 0 ? 1e-3 : 1e-2;
+    const lattice::BristleAdvance advance(p, kin, tolerance);
+    // on the leading half of the rim (the path x0 - V_r tau enters the patch)
+    const double where = heading + 0.49 * M_PI * (2.0 * unit(rng) - 1.0);
+    const Eigen::Vector2d x0 = p.a * Eigen::Vector2d(std::cos(where), std::sin(where));
+    if ((x0 - span * kin.V_r).norm() >= p.a)
+      continue;  // across the patch within the span (the lattice takes a bristle off at the far edge)
+    Eigen::Vector2d fine, finer;
+    if (!fineFromRim(advance, x0, kin.V_r, span, 5000, fine) || !fineFromRim(advance, x0, kin.V_r, span, 10000, finer))
+      continue;  // adheres throughout or re-adheres within the message
+    const double reference = (fine - finer).norm() / tolerance;
+    worst_reference = std::max(worst_reference, reference);
+    if (reference > 1e-3)
+      continue;
+    lattice::BristleState s;  // undeformed, adhering: as the lattice starts an entering bristle
+    s.slip_travel = INFINITY;
+    advance.advance(s, x0, span, true, 100000);
+    if (!s.sliding)
+      continue;
+    const double ratio = (s.u - fine).norm() / (s.step_error + 1e-3 * tolerance);
     if (ratio > 1.0)
       std::printf("  case %d: error %.3g, its estimate %.3g (tolerance %.3g): V_r %.3g m/s, omega_z %.3g rad/s, |V_s| "
                   "%.3g m/s, span %g s, resolution %d\n",
@@ -285,6 +392,29 @@ TEST(BristleAdvance, StiffStepErrorBoundsTheErrorOverTenMillisecondMessages)
               c.compared, c.worst, c.frozen, c.worst_frozen);
   EXPECT_GE(c.compared, 300);
   EXPECT_EQ(c.over, 0);
+}
+
+TEST(BristleAdvance, SlidingStepErrorBoundsTheErrorFromTheLeadingEdge)
+{
+  // A bristle entering at the leading edge, where the bound vanishes and the pull |w| / b has its pole: under the
+  // parabolic pressure it slides at once where the drive outgrows the bound, and its first steps are the stiff ones of
+  // the leading edge (most of the multi-step bristles of Fig. 4's message at resolution 64); under the Hertzian one it
+  // adheres first (the bound's slope is unbounded there) and its onset lies near the rim. The error each bristle reports
+  // bounds its distance from the fine run (the comparisons above start inside 0.95 a). With the error carried through a
+  // step scaled by the bound's ratio capped at 1 (an error made where the bound was small does not grow with it), two
+  // parabolic bristles of this seed fell below their error, by 3.3 % (40 seeds were run: none below with the ratio
+  // uncapped, the largest error / estimate 0.92, 0.90 and 0.995 by pressure law).
+  for (const PressureDistribution law :
+       { PressureDistribution::Parabolic, PressureDistribution::Hertzian, PressureDistribution::Uniform })
+  {
+    double reference = 0.0;
+    const Comparison c = compareFromRim(106, 1500, law, reference);
+    std::printf("from the leading edge, pressure law %d: compared %d sliding bristles, largest error / its estimate "
+                "%.3f (the fine run's largest change at twice its steps %.2g of the tolerance)\n",
+                static_cast<int>(law), c.compared, c.worst, reference);
+    EXPECT_GE(c.compared, 200);
+    EXPECT_EQ(c.over, 0);
+  }
 }
 
 TEST(BristleAdvance, AnOnsetLocatedIsCountedAndOneTheBudgetCannotPayForIsNot)
