@@ -60,7 +60,36 @@ struct Comparison
   double worst = 0.0;  // error / (estimate + 1e-3 tolerance)
   int frozen = 0;        // taken without a step (the drive and bound frozen at the middle, coulombSlideFrozen)
   double worst_frozen = 0.0;
+
+  // one bristle's error against its estimate (plus a thousandth of the tolerance), reported where it is over: the ratio
+  double add(int n, double error, double estimate, double tolerance, const ContactKinematics& kin, double span,
+             int resolution)
+  {
+    const double ratio = error / (estimate + 1e-3 * tolerance);
+    if (ratio > 1.0)
+      std::printf("  case %d: error %.3g, its estimate %.3g (tolerance %.3g): V_r %.3g m/s, omega_z %.3g rad/s, |V_s| "
+                  "%.3g m/s, span %g s, resolution %d\n",
+                  n, error, estimate, tolerance, kin.V_r.norm(), kin.omega_z, kin.V_s.norm(), span, resolution);
+    worst = std::max(worst, ratio);
+    over += ratio > 1.0;
+    ++compared;
+    return ratio;
+  }
 };
+
+// A random drive over the envelope: rolling from a standstill's noise (0.1 mm/s) to 10^decades of that, spin up to
+// 15 rad/s either way, sliding up to 0.3 m/s
+ContactKinematics randomDrive(std::mt19937_64& rng, double decades)
+{
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double speed = std::pow(10.0, -4.0 + decades * unit(rng)), heading = 2.0 * M_PI * unit(rng);
+  ContactKinematics kin;
+  kin.V_r = speed * Eigen::Vector2d(std::cos(heading), std::sin(heading));
+  const double slide = 0.3 * unit(rng), slide_heading = 2.0 * M_PI * unit(rng);
+  kin.V_s = slide * Eigen::Vector2d(std::cos(slide_heading), std::sin(slide_heading));
+  kin.omega_z = 30.0 * (unit(rng) - 0.5);
+  return kin;
+}
 
 // `count` seeded random sliding bristles of the default robot (a = 10 mm): rolling from a standstill's noise (0.1 mm/s)
 // to 2 m/s (slow: to 50 mm/s, spin in place and a parked robot's noise), spin up to 15 rad/s either way, sliding up to
@@ -79,12 +108,7 @@ Comparison compareWithFine(bool slow, unsigned seed, int count, double slow_mess
   Comparison out;
   for (int n = 0; n < count; ++n)
   {
-    const double speed = std::pow(10.0, -4.0 + (slow ? 2.7 : 4.3) * unit(rng)), heading = 2.0 * M_PI * unit(rng);
-    ContactKinematics kin;
-    kin.V_r = speed * Eigen::Vector2d(std::cos(heading), std::sin(heading));
-    const double slide = 0.3 * unit(rng), slide_heading = 2.0 * M_PI * unit(rng);
-    kin.V_s = slide * Eigen::Vector2d(std::cos(slide_heading), std::sin(slide_heading));
-    kin.omega_z = 30.0 * (unit(rng) - 0.5);
+    const ContactKinematics kin = randomDrive(rng, slow ? 2.7 : 4.3);
     const int resolution = 16 << (n % 3);
     const double tolerance = 0.2 * c / (resolution * resolution);  // BrushTransient::timeTolerance
     const double span = slow ? slow_message : (n % 2 == 0 ? 1e-3 : 1e-2);
@@ -105,20 +129,12 @@ Comparison compareWithFine(bool slow, unsigned seed, int count, double slow_mess
     const int steps = advance.advance(s, x0, span, false, 1000);
     if (!s.sliding)
       continue;  // it ended adhering (an onset within the fine run's own resolution)
-    const double ratio = (s.u - fine).norm() / (s.step_error + 1e-3 * tolerance);
+    const double ratio = out.add(n, (s.u - fine).norm(), s.step_error, tolerance, kin, span, resolution);
     if (steps == 0)
     {
       ++out.frozen;
       out.worst_frozen = std::max(out.worst_frozen, ratio);
     }
-    if (ratio > 1.0)
-      std::printf("  case %d: error %.3g, its estimate %.3g (tolerance %.3g): V_r %.3g m/s, omega_z %.3g rad/s, |V_s| "
-                  "%.3g m/s, span %g s, resolution %d\n",
-                  n, (s.u - fine).norm(), s.step_error, tolerance, speed, kin.omega_z, kin.V_s.norm(), span,
-                  resolution);
-    out.worst = std::max(out.worst, ratio);
-    out.over += ratio > 1.0;
-    ++out.compared;
   }
   return out;
 }
@@ -189,17 +205,13 @@ Comparison compareFromRim(unsigned seed, int count, PressureDistribution pressur
   worst_reference = 0.0;
   for (int n = 0; n < count; ++n)
   {
-    const double speed = std::pow(10.0, -4.0 + 4.3 * unit(rng)), heading = 2.0 * M_PI * unit(rng);
-    ContactKinematics kin;
-    kin.V_r = speed * Eigen::Vector2d(std::cos(heading), std::sin(heading));
-    const double slide = 0.3 * unit(rng), slide_heading = 2.0 * M_PI * unit(rng);
-    kin.V_s = slide * Eigen::Vector2d(std::cos(slide_heading), std::sin(slide_heading));
-    kin.omega_z = 30.0 * (unit(rng) - 0.5);
+    const ContactKinematics kin = randomDrive(rng, 4.3);
     const int resolution = 16 << (n % 3);
     const double tolerance = 0.2 * c / (resolution * resolution);  // BrushTransient::timeTolerance
     const double span = n % 2 == 0 ? 1e-3 : 1e-2;
     const lattice::BristleAdvance advance(p, kin, tolerance);
     // on the leading half of the rim (the path x0 - V_r tau enters the patch)
+    const double heading = std::atan2(kin.V_r.y(), kin.V_r.x());
     const double where = heading + 0.49 * M_PI * (2.0 * unit(rng) - 1.0);
     const Eigen::Vector2d x0 = p.a * Eigen::Vector2d(std::cos(where), std::sin(where));
     if ((x0 - span * kin.V_r).norm() >= p.a)
@@ -216,15 +228,7 @@ Comparison compareFromRim(unsigned seed, int count, PressureDistribution pressur
     advance.advance(s, x0, span, true, 100000);
     if (!s.sliding)
       continue;
-    const double ratio = (s.u - fine).norm() / (s.step_error + 1e-3 * tolerance);
-    if (ratio > 1.0)
-      std::printf("  case %d: error %.3g, its estimate %.3g (tolerance %.3g): V_r %.3g m/s, omega_z %.3g rad/s, |V_s| "
-                  "%.3g m/s, span %g s, resolution %d\n",
-                  n, (s.u - fine).norm(), s.step_error, tolerance, speed, kin.omega_z, kin.V_s.norm(), span,
-                  resolution);
-    out.worst = std::max(out.worst, ratio);
-    out.over += ratio > 1.0;
-    ++out.compared;
+    out.add(n, (s.u - fine).norm(), s.step_error, tolerance, kin, span, resolution);
   }
   return out;
 }
