@@ -18,6 +18,7 @@
 // Package
 #include "brush_test_support.h"
 #include "lattice/bristle_advance.h"
+#include "lattice/rim_entry.h"
 #include "lattice/rim_integral.h"
 #include "sphere_contact_estimator/core/numerics/quadrature_rules.h"
 #include "sphere_contact_estimator/core/estimator/estimator_settings.h"
@@ -406,6 +407,115 @@ TEST(BristleAdvance, SlidingStepErrorBoundsTheErrorFromTheLeadingEdge)
     EXPECT_GE(c.compared, 200);
     EXPECT_EQ(c.over, 0);
   }
+}
+
+// From the leading rim where the bristle slides at once (kappa = |w| / b' > 1 there), over [0, d]: the direction's angle
+// by RK4 on a geometric grid from s0 = 1e-7 d (steps of at most a quarter of 1 / (kappa + 1) of the distance from the
+// rim, where the pull |w| / b ~ kappa / s is stiff, times `refine`), started on the solution regular at the rim,
+// tan(delta / 2) = -omega s0 / (2 (kappa + 1)) from the drive (its error of order s0^2 decays as (s0 / s)^kappa). False
+// where it is no longer pushed outward (w . e < db/ds, db/ds = b1 + 2 b2 s from the rim: a difference of the bound's
+// values there is rounding's, t = 1 - r^2 / a^2 a few 1e-16 off) somewhere on the grid.
+bool fineFromRimGeometric(const lattice::BristleAdvance& a, const Eigen::Vector2d& x0, const Eigen::Vector2d& V_r,
+                          double kappa, double b1, double b2, double d, int refine, Eigen::Vector2d& u_end)
+{
+  const auto x = [&](double tau) { return Eigen::Vector2d(x0 - tau * V_r); };
+  const auto rate = [&](double tau, double theta) {
+    const double b = a.bound(x(tau));
+    const Eigen::Vector2d w = a.drive(x(tau));
+    return b > 0.0 ? (-std::sin(theta) * w.x() + std::cos(theta) * w.y()) / b : 0.0;
+  };
+  const double s0 = 1e-7 * d;
+  const Eigen::Vector2d w0 = a.drive(x(0.0)), w_dot = a.drive(x(1.0)) - w0, ws = a.drive(x(s0));
+  const double omega = (w0.x() * w_dot.y() - w0.y() * w_dot.x()) / w0.squaredNorm();
+  double theta = std::atan2(ws.y(), ws.x()) - 2.0 * std::atan(omega * s0 / (2.0 * (kappa + 1.0)));
+  const int n = refine * static_cast<int>(std::ceil(4.0 * (kappa + 1.0) * std::log(d / s0)));
+  const double q = std::pow(d / s0, 1.0 / n);
+  double tau = s0;
+  for (int i = 0; i < n; ++i)
+  {
+    const double next = i + 1 == n ? d : tau * q, h = next - tau;
+    const double k1 = rate(tau, theta), k2 = rate(tau + 0.5 * h, theta + 0.5 * h * k1),
+                 k3 = rate(tau + 0.5 * h, theta + 0.5 * h * k2), k4 = rate(tau + h, theta + h * k3);
+    theta += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    tau = next;
+    if (a.drive(x(tau)).dot(Eigen::Vector2d(std::cos(theta), std::sin(theta))) - (b1 + 2.0 * b2 * tau) < 0.0)
+      return false;
+  }
+  u_end = a.bound(x(d)) * Eigen::Vector2d(std::cos(theta), std::sin(theta));
+  return true;
+}
+
+TEST(RimEntry, ItsBoundHoldsFromTheRimOverEveryStepLength)
+{
+  // The step from the leading rim (lattice::RimEntry) on its own, over step lengths from 1e-5 of the way to the crossing
+  // ahead to half of it (the longest it takes), on seeded random entries under the drives of compareFromRim where the
+  // bristle slides from the rim (kappa = |w| / b' > 1 there: up to thousands for a grazing entry): the direction it
+  // gives at d against fineFromRimGeometric's (agreeing with itself at twice its steps within a thousandth of the
+  // bound), within 2 b(d) times its bound on T. (Below 1e-12 c the comparison is rounding's: the rim point's own t,
+  // a few 1e-16 off 0, against t's growth over the shortest steps.)
+  BrushParameters p = EstimatorSettings{}.brushParameters();
+  p.sliding_law = SlidingLaw::Coulomb;
+  const double c = p.mu * peakFactor(p.pressure) * p.F_z / (M_PI * p.a * p.a) / p.k;
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int compared = 0, over = 0, missed_readhesion = 0;
+  double worst = 0.0, worst_kappa = 0.0, worst_d = 0.0, largest_kappa = 0.0;
+  std::vector<double> ratios;
+  for (int n = 0; n < 1500; ++n)
+  {
+    const ContactKinematics kin = randomDrive(rng, 4.3);
+    const lattice::BristleAdvance advance(p, kin, 1.0);
+    const double heading = std::atan2(kin.V_r.y(), kin.V_r.x());
+    const double where = heading + 0.49 * M_PI * (2.0 * unit(rng) - 1.0);
+    const Eigen::Vector2d x0 = p.a * Eigen::Vector2d(std::cos(where), std::sin(where));
+    const double inv_a2 = 1.0 / (p.a * p.a);
+    const double t0 = 1.0 - x0.squaredNorm() * inv_a2, t1 = 2.0 * x0.dot(kin.V_r) * inv_a2;
+    const double t2 = -kin.V_r.squaredNorm() * inv_a2;
+    double d = -0.5 * t1 / t2 * std::pow(10.0, -5.0 * unit(rng));
+    const Eigen::Vector2d w0 = advance.drive(x0), w_dot = advance.drive(x0 - kin.V_r) - w0;
+    lattice::RimEntry::Result r;
+    bool applies = lattice::RimEntry::step(c, w0, w_dot, t0, t1, t2, d, r);
+    for (int k = 0; k < 2 && !applies && r.reach < 1.0 && r.reach > 0.01; ++k)
+    {
+      d *= 0.9 * r.reach;  // shorter where Psi is too steep over the step, as the lattice does
+      applies = lattice::RimEntry::step(c, w0, w_dot, t0, t1, t2, d, r);
+    }
+    if (!applies || !r.pushed)
+      continue;  // it adheres as it enters, or re-adheres: the lattice's other steps
+    const double kappa = w0.norm() / (c * t1);
+    Eigen::Vector2d fine, finer;
+    if (!fineFromRimGeometric(advance, x0, kin.V_r, kappa, c * t1, c * t2, d, 1, fine) ||
+        !fineFromRimGeometric(advance, x0, kin.V_r, kappa, c * t1, c * t2, d, 2, finer))
+    {
+      ++missed_readhesion;  // pushed at its nodes, re-adhering between them
+      continue;
+    }
+    const double b = advance.bound(x0 - d * kin.V_r), estimate = 2.0 * b * r.error, floor = 1e-12 * c;
+    if (!((fine - finer).norm() <= 1e-3 * estimate + floor))
+      continue;  // the reference not converged to a thousandth of the bound
+    const Eigen::Vector2d w = advance.drive(x0 - d * kin.V_r).normalized();
+    const double delta = 2.0 * std::atan(r.T);
+    const Eigen::Vector2d u = b * Eigen::Vector2d(std::cos(delta) * w.x() - std::sin(delta) * w.y(),
+                                                  std::sin(delta) * w.x() + std::cos(delta) * w.y());
+    const double ratio = (u - fine).norm() / (estimate + floor);
+    ++compared;
+    ratios.push_back(ratio);
+    over += ratio > 1.0;
+    largest_kappa = std::max(largest_kappa, kappa);
+    if (ratio > worst)
+    {
+      worst = ratio;
+      worst_kappa = kappa;
+      worst_d = d / (-t1 / t2);
+    }
+  }
+  std::sort(ratios.begin(), ratios.end());
+  std::printf("RimEntry: compared %d entries (kappa up to %.0f), error / bound largest %.3f (kappa %.2f, d %.2g of the "
+              "way across), median %.2g; %d re-adhering between its nodes\n",
+              compared, largest_kappa, worst, worst_kappa, worst_d, ratios.empty() ? 0.0 : ratios[ratios.size() / 2],
+              missed_readhesion);
+  EXPECT_GE(compared, 500);
+  EXPECT_EQ(over, 0);
 }
 
 TEST(BristleAdvance, AnOnsetLocatedIsCountedAndOneTheBudgetCannotPayForIsNot)

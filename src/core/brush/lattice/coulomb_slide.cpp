@@ -6,6 +6,7 @@
 
 // Package
 #include "sphere_contact_estimator/core/numerics/magnus_sl2.h"
+#include "rim_entry.h"
 #include "rim_integral.h"
 
 // eq. (4b)'s sliding along a bristle's path over an update: without rolling in closed form (coulombSlideStill);
@@ -380,6 +381,9 @@ private:
   // The kinds of step, each a room of run()'s loop. (Every function is inlined into coulombSlide, where the object is a
   // local the compiler takes apart: members of one that lived on beyond inlining were stored and reloaded around each
   // call out, and the message took 3-5 % longer.)
+  // A bristle sliding in from the leading rim under the parabolic pressure: RimEntry's step, tried first (taken: the
+  // walk advanced).
+  [[gnu::always_inline]] void fromRim(Walk& walk);
   // Out of work: the remainder in one return mapping.
   [[gnu::always_inline]] double remainder(double tau);
   // Too little bound for the direction to matter: no step (true).
@@ -426,6 +430,8 @@ inline double BristleAdvance::CoulombSlide::run()
   if (std::isnan(entry))
     return remainder(0.0);  // the work budget spent
   walk.end = std::min(span_, entry);
+  if (a_.m_ == 2 && s_.u.squaredNorm() == 0.0)
+    fromRim(walk);
   while (walk.tau < walk.end)
   {
     if (steps_ >= max_steps_)
@@ -474,6 +480,46 @@ inline double BristleAdvance::CoulombSlide::run()
       return ended;
   }
   return walk.end < span_ ? walk.end : INFINITY;  // at G's edge it is pushed no more
+}
+
+inline void BristleAdvance::CoulombSlide::fromRim(Walk& walk)
+{
+  // From the rim (t = t1 s + t2 s^2, entering) up to half the way to the crossing ahead, shorter where its bound is
+  // above the tolerance; where it does not apply (it re-adheres within the step, the drive turns too fast, ...), the
+  // steps below from the rim as before
+  if (!(std::abs(p_.t0) <= 1e-12 && p_.t1 > 0.0 && p_.t2 < 0.0))
+    return;
+  double d = std::min(walk.end, -0.5 * p_.t1 / p_.t2);
+  for (int tries = 0; tries < 3 && steps_ < max_steps_; ++tries)
+  {
+    ++steps_;
+    RimEntry::Result r;
+    if (!RimEntry::step(a_.c_, p_.w, a_.w_dot_, p_.t0, p_.t1, p_.t2, d, r) && r.reach < 1.0 && r.reach > 0.01)
+    {
+      d *= 0.9 * r.reach;
+      continue;
+    }
+    if (!r.pushed || !(std::abs(r.T) <= 1.0))
+      return;
+    const Point q1 = a_.at(p_, d);
+    const double error = 2.0 * q1.b * r.error, w1 = q1.w.norm();
+    if (error > a_.tolerance_ || !(w1 > 0.0))
+    {
+      d *= std::max(0.2, 0.9 * std::cbrt(a_.tolerance_ / error));
+      continue;
+    }
+    // the direction at d: the drive's turned by delta = 2 atan(T)
+    const Eigen::Vector2d h1 = q1.w / w1;
+    const double T2 = r.T * r.T, n = 1.0 / (1.0 + T2), cd = (1.0 - T2) * n, sd = 2.0 * r.T * n;
+    s_.u = q1.b * Eigen::Vector2d(cd * h1.x() - sd * h1.y(), sd * h1.x() + cd * h1.y());
+    s_.step_error = carried(s_.step_error, 0.0, q1.b, 1.0) + error;
+    walk.tau = d;
+    walk.known = q1;
+    walk.known_tau = d;
+    if (walk.tau < walk.end)
+      walk.step = error > 0.0 ? d * std::min(4.0, 0.9 * std::sqrt(a_.tolerance_ / error)) : 4.0 * d;
+    return;
+  }
 }
 
 inline double BristleAdvance::CoulombSlide::remainder(double tau)
