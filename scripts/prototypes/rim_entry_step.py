@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""A prototype, not the library's code: an entry step for a bristle sliding in from the rim under eq. (4b).
+"""A prototype, not the library's code (built since as lattice::RimEntry, by another quadrature: src/core/brush/lattice/
+rim_entry.h): an entry step for a bristle sliding in from the rim under eq. (4b).
 
 docs/speed_and_accuracy.md (the lead of 2026-12-02): a bristle entering at the leading edge under the parabolic
 pressure has lambda = |w| / b ~ kappa / s near the rim, kappa = |w| / b'(0) of 1-4 where it slides from its entry, and

@@ -38,7 +38,8 @@ struct BristleState
 ///   step (near a rim crossing in the stretched time du = ds / f, RimIntegral; where the drive's turn against its pull
 ///   barely changes over it, the exponential step below first); where it is stiff, an exponential step in the drive's
 ///   frame (its error bounded at any pull; near a rim crossing the decay integrated against the bound's shape, where
-///   1 / b has its pole), else the trial deflection (the closed form over a step) scaled back onto the bound, the
+///   1 / b has its pole; from the leading rim under the parabolic pressure, where the pull ~ kappa / s, the solution
+///   regular there in closed form against (s / d)^kappa, RimEntry), else the trial deflection (the closed form over a step) scaled back onto the bound, the
 ///   implicit form of eq. (4b), against two half steps; each step's error within `tolerance`. The sliding speed
 ///   w.e - db/dtau is watched at the nodes (a re-adhesion located, then stepped to), and no step passes the path's
 ///   entry into G (|w| <= db/dtau), where the bristle has re-adhered at the latest. Without rolling (V_r = 0: parked,

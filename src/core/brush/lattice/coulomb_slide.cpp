@@ -11,7 +11,8 @@
 
 // eq. (4b)'s sliding along a bristle's path over an update: without rolling in closed form (coulombSlideStill);
 // rolling, by steps along each sliding piece (coulombSlide, the class CoulombSlide), and the steps' kinds: the return
-// mapping, the exponential step (with nearRim's integral of the pull), the Magnus step (in CoulombSlide).
+// mapping, the exponential step (with nearRim's integral of the pull), the Magnus step (in CoulombSlide), and from the
+// leading rim under the parabolic pressure RimEntry's (rim_entry.h).
 
 namespace sphere_contact_estimator::lattice
 {
