@@ -44,9 +44,9 @@ const Tables& tables()
   return t;
 }
 
-// phi's interpolant against the smooth pole distance: the interpolants converge as rho^-n with rho the Bernstein
-// ellipse's through phi's nearest singularity; with it at least a step's length from [0, d] (rho >= 2 + sqrt 3), the
-// quartic's error stands below a tenth of the quadratic's, which the estimate takes: further than this many steps
+// omega's poles at least this many steps' lengths from [0, d]: phi's interpolants converge as rho^-n, rho the
+// Bernstein ellipse's through its nearest singularity, here rho of about 4 or more, so that the quartic's error stands
+// about rho^-2 below the quadratic's, whose difference from it the bound takes
 constexpr double kPoleDistance = 1.0;
 // Psi's least over the step against its largest (below): e^-2
 constexpr double kPsiLeast = 0.135;
