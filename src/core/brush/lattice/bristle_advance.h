@@ -109,11 +109,11 @@ private:
   // Lambda, the integral of lambda = |w| / b over a step of length d, and its error, where the step reaches towards a
   // rim crossing (1 / b has its pole, or branch point, there, which Simpson's rule does not see: a stiff 10-ms step
   // ending by the rim took Lambda as 12.9 against 4.0): |w| as its quadratic through its values at the ends and the
-  // middle (w0, wm, w1; w_start the drive at its start, cross = w_start x w'), integrated against the bound's shape in
-  // closed form, its error from |w|'s third derivative; elsewhere leaves Simpson's rule untouched. t: t from the step's
+  // middle (w0, wm, w1; w_start the drive at its start), integrated against the bound's shape in closed form, its
+  // error from |w|'s third derivative (driveNormThird, rim_integral.h); elsewhere leaves Simpson's rule untouched. t: t from the step's
   // start.
-  void nearRim(const Quadratic& t, double d, const Eigen::Vector2d& w_start, double cross, double w0, double wm,
-               double w1, double& Lambda, double& error) const;
+  void nearRim(const Quadratic& t, double d, const Eigen::Vector2d& w_start, double w0, double wm, double w1,
+               double& Lambda, double& error) const;
   bool exponentialStep(const Along& piece, const Point& q0, const Point& q1, double w0, double w1,
                        const Eigen::Vector2d& e0, double tau, double d, bool first_try, Exponential& out) const;
   // one return-mapping step (and two half steps) of a sliding bristle at tau along the piece; returns the factor a

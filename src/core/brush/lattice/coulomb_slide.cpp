@@ -36,6 +36,12 @@ constexpr double kFrozenTravel = 2e-3;
 // e^{-x}, the same number: past 746 it rounds to 0, which is returned without glibc's underflow path (errno and its
 // checks: about 1.5 % of perf's samples of Fig. 4's message at resolution 64, from stiff steps by the rim)
 inline double decay(double x) { return x > 746.0 ? 0.0 : std::exp(-x); }
+// The unit vector h turned by 2 atan(T) (T the tangent of half the angle, as the steps carry a direction)
+inline Eigen::Vector2d turned(const Eigen::Vector2d& h, double T)
+{
+  const double n = 1.0 / (1.0 + T * T), c = (1.0 - T * T) * n, sn = 2.0 * T * n;
+  return { c * h.x() - sn * h.y(), sn * h.x() + c * h.y() };
+}
 }  // namespace
 
 double BristleAdvance::coulombSlideStill(BristleState& s, const Eigen::Vector2d& x, double span) const
@@ -201,8 +207,8 @@ double BristleAdvance::returnMapping(BristleState& s, const Along& p, double tau
   return tn > b_end ? b_end / tn : 1.0;  // how a direction error carried into the step shrinks
 }
 
-void BristleAdvance::nearRim(const Quadratic& t, double d, const Eigen::Vector2d& w_start, double cross, double w0,
-                             double wm, double w1, double& Lambda, double& error) const
+void BristleAdvance::nearRim(const Quadratic& t, double d, const Eigen::Vector2d& w_start, double w0, double wm,
+                             double w1, double& Lambda, double& error) const
 {
   double s_a, s_b;
   if (!RimIntegral::crossings(t.t0, t.t1, t.t2, s_a, s_b) || !(d > kRimNear * std::min(-s_a, s_b) && d < s_b))
@@ -211,13 +217,8 @@ void BristleAdvance::nearRim(const Quadratic& t, double d, const Eigen::Vector2d
   const double a2 = 2.0 * (w0 - 2.0 * wm + w1) / (d * d), a1 = (w1 - w0) / d - a2 * d;
   const RimIntegral integral(m_, t.t0, t.t1, t.t2, s_a, s_b, d);
   Lambda = integral(w0, a1, a2) / c_;
-  // Its error: the quadratic's, |w| - W = |w|'''(xi) / 6 s (s - d / 2) (s - d), where |s (s - d / 2) (s - d)| <=
-  // d^2 / 2 min(s, d - s) and, with |w|^2 = |w_s + w' s|^2, |w|''' = -3 D (w . w') / |w|^5, D = (w_s x w')^2, so that
-  // ||w|'''| <= 3 D |w'| / |w|^4 at the least |w| over the step.
-  const double D = cross * cross;
-  const double vertex = -w_start.dot(w_dot_) / std::max(w_dot_norm_ * w_dot_norm_, 1e-300);
-  const double w_least = vertex > 0.0 && vertex < d ? std::abs(cross) / w_dot_norm_ : std::min(w0, w1);
-  const double third = 3.0 * D * w_dot_norm_ / (w_least * w_least * w_least * w_least);
+  // Its error: the quadratic's (driveNormThird)
+  const double third = driveNormThird(w_start, w_dot_, w_dot_norm_, d, w0, w1);
   error = third / 12.0 * d * d * std::min(integral(0.0, 1.0, 0.0), integral(d, -1.0, 0.0)) / c_;
 }
 
@@ -253,7 +254,7 @@ bool BristleAdvance::exponentialStep(const Along& p, const Point& q0, const Poin
     const Quadratic t{ p.t0 + tau * (p.t1 + tau * p.t2), p.t1 + 2.0 * tau * p.t2, p.t2 };  // from the step's start
     const double reach = d / kRimNear;
     if (m_ > 0 && (t.t0 + reach * (t.t1 + reach * t.t2) <= 0.0 || t.t0 - reach * (t.t1 - reach * t.t2) <= 0.0))
-      nearRim(t, d, q0.w, cross, w0, wm, w1, Lambda, Lambda_error);
+      nearRim(t, d, q0.w, w0, wm, w1, Lambda, Lambda_error);
   }
   const double E = decay(Lambda);
   const double T0 = c0 > -1.0 ? s0 / (1.0 + c0) : INFINITY;
@@ -297,8 +298,8 @@ bool BristleAdvance::exponentialStep(const Along& p, const Point& q0, const Poin
   const double decay_error = Lambda_error <= 1.0 ? E * Lambda_error * (1.0 + Lambda_error)
                                                  : decay(std::max(0.0, Lambda - Lambda_error)) - E;
   out.error = 2.0 * q1.b * (turn + std::abs(T0) * decay_error);
-  const double n = 1.0 / (1.0 + T1s), cd = (1.0 - T1s) * n, sd = 2.0 * T1 * n;
-  out.e1 = Eigen::Vector2d(cd * h1.x() - sd * h1.y(), sd * h1.x() + cd * h1.y());
+  const double cd = (1.0 - T1s) * (1.0 / (1.0 + T1s));  // cos delta at the end (as turned() takes it)
+  out.e1 = turned(h1, T1);
   // pushed outward at the end and the middle (with first_try, at the middle along the nearer of the ends' angles)
   out.pushed = w1 * cd - q1.b_dot >= 0.0 && wm * std::min(first_try ? c0 : 1.0, cd) - qm.b_dot >= 0.0;
   out.Lambda = Lambda;
@@ -509,10 +510,7 @@ inline void BristleAdvance::CoulombSlide::fromRim(Walk& walk)
       d *= std::max(0.2, 0.9 * std::cbrt(a_.tolerance_ / error));
       continue;
     }
-    // the direction at d: the drive's turned by delta = 2 atan(T)
-    const Eigen::Vector2d h1 = q1.w / w1;
-    const double T2 = r.T * r.T, n = 1.0 / (1.0 + T2), cd = (1.0 - T2) * n, sd = 2.0 * r.T * n;
-    s_.u = q1.b * Eigen::Vector2d(cd * h1.x() - sd * h1.y(), sd * h1.x() + cd * h1.y());
+    s_.u = q1.b * turned(q1.w / w1, r.T);  // the drive's direction at d turned by delta = 2 atan(T)
     s_.step_error = carried(s_.step_error, 0.0, q1.b, 1.0) + error;
     walk.tau = d;
     walk.known = q1;
@@ -716,11 +714,7 @@ inline bool BristleAdvance::CoulombSlide::takeMagnus(Walk& walk, const Magnus& m
   const double* const P = m.P;
   const double* const Q = m.Q;
   // the direction at t = tan((theta - theta0) / 2): e0 turned by 2 atan(t)
-  const auto direction = [&](double ti) {
-    const double n = 1.0 / (1.0 + ti * ti);
-    const double c = (1.0 - ti * ti) * n, sn = 2.0 * ti * n;
-    return Eigen::Vector2d(c * e0.x() - sn * e0.y(), sn * e0.x() + c * e0.y());
-  };
+  const auto direction = [&](double ti) { return turned(e0, ti); };
   // t over the step on its cubic Hermite interpolant (t and t' = A + B t - A t^2 at the ends; t = 0 at the start)
   const double t1 = m.y1 / m.y2;
   // the Riccati coefficients at point i: B = -P / b, A = Q / (2 b)

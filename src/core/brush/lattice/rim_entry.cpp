@@ -1,5 +1,8 @@
 #include "rim_entry.h"
 
+// Package
+#include "rim_integral.h"
+
 // STL
 #include <algorithm>
 #include <cmath>
@@ -88,7 +91,7 @@ bool RimEntry::step(double c, const Eigen::Vector2d& w0, const Eigen::Vector2d& 
     return false;  // it adheres as it enters (or only just slides)
   const double w_least = s_v > 0.0 && s_v < d ? std::abs(cross) / std::sqrt(wd2) : std::min(wn[0], wn[4]);
   if (!(w_least > 0.0))
-    return false;
+    return false;  // (|w| vanishes within the step: driveNormThird's least |w|, below)
   // Lambda(d) - Lambda(s) = (1 / c) int_s^d W / t, W = w0 + a1 s + a2 s^2 through |w| at 0, d / 2, d: by partial
   // fractions W / t = a2 / t2 + A / s + B / (s - s_b), A = W(0) / t1 = kappa c, B = -W(s_b) / t1 (eq. 4b's decay
   // integrated as nearRim does, the crossing behind at 0):
@@ -169,11 +172,10 @@ bool RimEntry::step(double c, const Eigen::Vector2d& w0, const Eigen::Vector2d& 
   if (!(L < 0.5))
     return false;
   const double picard = L / (1.0 - L) * (change + quad);
-  // - the fit of |w|: nearRim's bound on Lambda's error, |W - |w|| <= |w|''' / 12 d^2 min(s, d - s), |w|''' <=
-  //   3 (w0 x w')^2 |w'| / |w|^4 at its least, against int_0^d s / (c t) = ln(1 - d / s_b) / (c t2); through the
-  //   kernel, (e^{dLambda} - 1) int K |phi|, int K |phi| <= d max|phi| / (kappa + 1) with phi's nodes' largest
-  //   doubled (between the nodes)
-  const double third = 3.0 * cross * cross * std::sqrt(wd2) / (w_least * w_least * w_least * w_least);
+  // - the fit of |w|: nearRim's bound on Lambda's error, |W - |w|| <= |w|''' / 12 d^2 min(s, d - s) (driveNormThird),
+  //   against int_0^d s / (c t) = ln(1 - d / s_b) / (c t2); through the kernel, (e^{dLambda} - 1) int K |phi|,
+  //   int K |phi| <= d max|phi| / (kappa + 1) with phi's nodes' largest doubled (between the nodes)
+  const double third = driveNormThird(w0, w_dot, std::sqrt(wd2), d, wn[0], wn[4]);
   const double dLambda = third / 12.0 * d * d * std::log1p(-d / s_b) / (c * t2);
   const double kernel = std::expm1(dLambda) * 2.0 * phi_max * d * inv[0];
   // - t0's (the header), doubled for the first order's

@@ -1,5 +1,12 @@
 #pragma once
 
+// STL
+#include <algorithm>
+#include <cmath>
+
+// Eigen
+#include <Eigen/Core>
+
 namespace sphere_contact_estimator::lattice
 {
 /// Along a straight path through the patch, t = 1 - r^2 / a^2 is a concave quadratic in the time s from a step's
@@ -34,5 +41,19 @@ private:
   double log_a_ = 0.0, log_b_ = 0.0;                          // f = t
   double dphi_ = 0.0, sin0_ = 0.0, cos0_ = 0.0, sin1_ = 0.0, cos1_ = 0.0;  // f = sqrt(t)
 };
+
+/// A bound on |w|''' over a step [0, d] of a path where the drive w = w_start + s w' is affine (w_dot_norm = |w'|; w0 and
+/// w1, |w| at the ends): with |w|^2 = |w_start + w' s|^2, |w|''' = -3 D (w . w') / |w|^5, D = (w_start x w')^2, so
+/// ||w|'''| <= 3 D |w'| / |w|^4 at the least |w| over the step (at the vertex of |w|^2 where that lies within it). The
+/// error of |w|'s quadratic through 0, d / 2, d, which nearRim and RimEntry integrate against 1 / f, is
+/// |w|'''(xi) / 6 s (s - d / 2) (s - d), at most this bound / 12 d^2 min(s, d - s).
+inline double driveNormThird(const Eigen::Vector2d& w_start, const Eigen::Vector2d& w_dot, double w_dot_norm, double d,
+                             double w0, double w1)
+{
+  const double cross = w_start.x() * w_dot.y() - w_start.y() * w_dot.x();
+  const double vertex = -w_start.dot(w_dot) / std::max(w_dot_norm * w_dot_norm, 1e-300);
+  const double w_least = vertex > 0.0 && vertex < d ? std::abs(cross) / w_dot_norm : std::min(w0, w1);
+  return 3.0 * (cross * cross) * w_dot_norm / (w_least * w_least * w_least * w_least);
+}
 
 }  // namespace sphere_contact_estimator::lattice
