@@ -28,36 +28,58 @@ namespace sphere_contact_estimator
 namespace
 {
 // The direction theta of a bristle on its bound, u = b (cos theta, sin theta): eq. (4b) with |u| = b is
-// b theta' = e_perp . w along the path x = x0 - V_r tau, by classical Runge-Kutta at `steps` steps, of equal length or,
-// graded, shorter towards both ends of the span (where the bound vanishes at the rim, the pull |w| / b has its pole).
-// False where the bristle stops being pushed outward (w . e < db/dtau: it re-adheres) within the span.
+// b theta' = e_perp . w along the path x = x0 - V_r tau. Classical Runge-Kutta from node(0) to node(steps), theta
+// updated in place; false at the first node where pushed(tau, theta) fails (the bristle re-adheres there).
+template <class Node, class Pushed>
+bool directionOnBound(const lattice::BristleAdvance& a, const Eigen::Vector2d& x0, const Eigen::Vector2d& V_r,
+                      int steps, const Node& node, const Pushed& pushed, double& theta)
+{
+  const auto rate = [&](double tau, double th) {
+    const Eigen::Vector2d x = x0 - tau * V_r;
+    const double b = a.bound(x);
+    const Eigen::Vector2d w = a.drive(x);
+    return b > 0.0 ? (-std::sin(th) * w.x() + std::cos(th) * w.y()) / b : 0.0;
+  };
+  double tau = node(0);
+  for (int i = 0; i < steps; ++i)
+  {
+    const double next = node(i + 1), h = next - tau;
+    const double k1 = rate(tau, theta), k2 = rate(tau + 0.5 * h, theta + 0.5 * h * k1),
+                 k3 = rate(tau + 0.5 * h, theta + 0.5 * h * k2), k4 = rate(next, theta + h * k3);
+    theta += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    tau = next;
+    if (!pushed(tau, theta))
+      return false;
+  }
+  return true;
+}
+
+// w . e - db/dtau at x0 - tau V_r for the direction theta: the bristle is pushed outward where it is positive
+double outwardPush(const lattice::BristleAdvance& a, const Eigen::Vector2d& x, double theta, double b_dot)
+{
+  return a.drive(x).dot(Eigen::Vector2d(std::cos(theta), std::sin(theta))) - b_dot;
+}
+
+// directionOnBound at `steps` steps, of equal length or, graded, shorter towards both ends of the span (where the bound
+// vanishes at the rim, the pull |w| / b has its pole). False where the bristle stops being pushed outward
+// (w . e < db/dtau: it re-adheres) within the span.
 bool fineSlide(const lattice::BristleAdvance& a, const Eigen::Vector2d& x0, const Eigen::Vector2d& V_r, double theta0,
                double span, int steps, Eigen::Vector2d& u_end, bool graded = false)
 {
   const auto x = [&](double tau) { return Eigen::Vector2d(x0 - tau * V_r); };
-  const auto rate = [&](double tau, double theta) {
-    const double b = a.bound(x(tau));
-    const Eigen::Vector2d w = a.drive(x(tau));
-    return b > 0.0 ? (-std::sin(theta) * w.x() + std::cos(theta) * w.y()) / b : 0.0;
-  };
   const auto at = [&](int i) {
     const double v = static_cast<double>(i) / steps;
     return span * (graded ? v * v * v * (10.0 - 15.0 * v + 6.0 * v * v) : v);
   };
+  // (db/dtau by a difference over a thousandth of the mean step: over a graded step's own, tiny by the ends, rounding
+  // made a false re-adhesion)
+  const double eps = 1e-3 * span / steps;
+  const auto pushed = [&](double t, double theta) {
+    return !(outwardPush(a, x(t), theta, (a.bound(x(t + eps)) - a.bound(x(t - eps))) / (2.0 * eps)) < 0.0);
+  };
   double theta = theta0;
-  for (int i = 0; i < steps; ++i)
-  {
-    const double tau = at(i), h = at(i + 1) - tau;
-    const double k1 = rate(tau, theta), k2 = rate(tau + 0.5 * h, theta + 0.5 * h * k1),
-                 k3 = rate(tau + 0.5 * h, theta + 0.5 * h * k2), k4 = rate(tau + h, theta + h * k3);
-    theta += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-    // (db/dtau by a difference over a thousandth of the mean step: over a graded step's own, tiny by the ends, rounding
-    // made a false re-adhesion)
-    const double t = tau + h, eps = 1e-3 * span / steps;
-    const double b_dot = (a.bound(x(t + eps)) - a.bound(x(t - eps))) / (2.0 * eps);
-    if (a.drive(x(t)).dot(Eigen::Vector2d(std::cos(theta), std::sin(theta))) - b_dot < 0.0)
-      return false;
-  }
+  if (!directionOnBound(a, x0, V_r, steps, at, pushed, theta))
+    return false;
   u_end = a.bound(x(span)) * Eigen::Vector2d(std::cos(theta), std::sin(theta));
   return true;
 }
@@ -419,28 +441,16 @@ bool fineFromRimGeometric(const lattice::BristleAdvance& a, const Eigen::Vector2
                           double kappa, double b1, double b2, double d, int refine, Eigen::Vector2d& u_end)
 {
   const auto x = [&](double tau) { return Eigen::Vector2d(x0 - tau * V_r); };
-  const auto rate = [&](double tau, double theta) {
-    const double b = a.bound(x(tau));
-    const Eigen::Vector2d w = a.drive(x(tau));
-    return b > 0.0 ? (-std::sin(theta) * w.x() + std::cos(theta) * w.y()) / b : 0.0;
-  };
   const double s0 = 1e-7 * d;
   const Eigen::Vector2d w0 = a.drive(x(0.0)), w_dot = a.drive(x(1.0)) - w0, ws = a.drive(x(s0));
   const double omega = (w0.x() * w_dot.y() - w0.y() * w_dot.x()) / w0.squaredNorm();
   double theta = std::atan2(ws.y(), ws.x()) - 2.0 * std::atan(omega * s0 / (2.0 * (kappa + 1.0)));
   const int n = refine * static_cast<int>(std::ceil(4.0 * (kappa + 1.0) * std::log(d / s0)));
-  const double q = std::pow(d / s0, 1.0 / n);
-  double tau = s0;
-  for (int i = 0; i < n; ++i)
-  {
-    const double next = i + 1 == n ? d : tau * q, h = next - tau;
-    const double k1 = rate(tau, theta), k2 = rate(tau + 0.5 * h, theta + 0.5 * h * k1),
-                 k3 = rate(tau + 0.5 * h, theta + 0.5 * h * k2), k4 = rate(tau + h, theta + h * k3);
-    theta += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-    tau = next;
-    if (a.drive(x(tau)).dot(Eigen::Vector2d(std::cos(theta), std::sin(theta))) - (b1 + 2.0 * b2 * tau) < 0.0)
-      return false;
-  }
+  const double q = std::log(d / s0) / n;
+  const auto node = [&](int i) { return i == n ? d : s0 * std::exp(q * i); };
+  const auto pushed = [&](double t, double th) { return !(outwardPush(a, x(t), th, b1 + 2.0 * b2 * t) < 0.0); };
+  if (!directionOnBound(a, x0, V_r, n, node, pushed, theta))
+    return false;
   u_end = a.bound(x(d)) * Eigen::Vector2d(std::cos(theta), std::sin(theta));
   return true;
 }
