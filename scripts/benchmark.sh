@@ -2,6 +2,8 @@
 # Speed and accuracy of every model: Google Benchmark timings, the accuracy program over random operating
 # points, the auto model along the demo bag (before: bench/demo_bag_before.json, measured on the release before
 # issue 11), the node over roscpp and bag_analyze's replay path, joined into docs/benchmarks.md and docs/figures/pareto.png (commit both).
+# With --stream-targets (about 10 minutes): only issue 21's measures (the recorded manoeuvres' streams, the node on them,
+# their replay, the transient model's 10-ms message), rewriting only their rows of the Targets table.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
@@ -19,11 +21,58 @@ record_scenario() {
   roslaunch sphere_contact_estimator demo.launch scenario:="$1" rate:="$2" record:="$OUT/$3.bag" \
     output_csv:="$OUT/$3_live.csv" > "$OUT/$3_record.log" 2>&1 || true
 }
+# the recorded manoeuvre at 100 Hz (data/manoeuvre.bag) and 1 kHz (recorded now), every message against a converged
+# reference
+streams() {
+  record_scenario "$REPO/config/manoeuvre_scenario.yaml" 1000 manoeuvre_1khz
+  /usr/bin/python3 "$REPO/scripts/stream_benchmark.py" --bag-analyze "$BIN/bag_analyze" --params "$REPO/config/contact_estimator.yaml" \
+    --scenario "$REPO/config/manoeuvre_scenario.yaml" --reference-resolution 128 --confirm-resolution 256 \
+    --bags "$REPO/data/manoeuvre.bag" "$OUT/manoeuvre_1khz.bag" --out "$OUT/streams.json"
+}
+# the node over roscpp on loopback (the node pinned to one core), the recorded manoeuvres at their pace
+node_on_streams() {
+  export ROS_MASTER_URI="http://localhost:$((20000 + RANDOM % 20000))"
+  roscore -p "${ROS_MASTER_URI##*:}" > "$OUT/roscore.log" 2>&1 &
+  ROSCORE=$!
+  NODE=""
+  trap 'kill $NODE $ROSCORE 2>/dev/null || true' EXIT
+  until rostopic list > /dev/null 2>&1; do sleep 0.2; done
+  rosparam load "$REPO/config/contact_estimator.yaml" /contact_estimator
+  taskset -c 1 "$BIN/contact_estimator_node" __name:=contact_estimator > "$OUT/node.log" 2>&1 &
+  NODE=$!
+  taskset -c 0 "$BIN/node_benchmark" _duration:=2.0 _streams:="$REPO/data/manoeuvre.bag,$OUT/manoeuvre_1khz.bag" > "$OUT/node.json"
+  kill $NODE $ROSCORE 2>/dev/null || true
+  wait 2>/dev/null || true
+  trap - EXIT
+}
+# the recorded manoeuvres through bag_analyze's replay path, each brush model
+replay_streams() {
+  taskset -c 0 "$BIN/replay_benchmark" --streams "$REPO/data/manoeuvre.bag" "$OUT/manoeuvre_1khz.bag" \
+    --params "$REPO/config/contact_estimator.yaml" --models off linear steady transient auto > "$OUT/replay_streams.json"
+}
 install_deps
-build bench_models model_accuracy node_benchmark contact_estimator_node bag_analyze replay_benchmark calibration_accuracy \
-  work_units
 mkdir -p "$OUT"
 BIN="$WS/devel/lib/$PKG"
+if [ "${1:-}" = "--stream-targets" ]; then
+  build bench_models node_benchmark contact_estimator_node bag_analyze replay_benchmark
+  log "the transient model's 10-ms message, each stepping and law (Google Benchmark, 3 repetitions, medians, one core)"
+  taskset -c 1 "$BIN/bench_models" --benchmark_filter=BM_BrushTransientMessage --benchmark_repetitions=3 \
+    --benchmark_report_aggregates_only=true --benchmark_format=console --benchmark_out_format=json \
+    --benchmark_out="$OUT/bench_message.json" 2>&1 | grep -v WARNING
+  log "the recorded manoeuvres: every message against a converged reference (about 3 minutes)"
+  streams
+  log "the node on the recorded manoeuvres at their pace"
+  node_on_streams
+  log "the recorded manoeuvres through bag_analyze's replay path, each brush model"
+  replay_streams
+  /usr/bin/python3 "$REPO/scripts/benchmark_report.py" --bench "$OUT/bench_message.json" --node "$OUT/node.json" \
+    --streams "$OUT/streams.json" --replay-streams "$OUT/replay_streams.json" --docs "$REPO/docs" \
+    --stream-targets "$(hostname), $(nproc) CPUs, library of $(git -C "$REPO" rev-parse --short HEAD)$(git -C "$REPO" diff --quiet HEAD -- src/core || echo ' with changes')"
+  exit 0
+fi
+[ -z "${1:-}" ] || { echo "usage: $0 [--stream-targets]" >&2; exit 2; }
+build bench_models model_accuracy node_benchmark contact_estimator_node bag_analyze replay_benchmark calibration_accuracy \
+  work_units
 log "timing (Google Benchmark, 3 repetitions, medians)"
 "$BIN/bench_models" --benchmark_repetitions=3 --benchmark_report_aggregates_only=true --benchmark_min_time=0.2 \
   --benchmark_format=console --benchmark_out_format=json --benchmark_out="$OUT/bench.json" 2>&1 | grep -v WARNING
@@ -45,10 +94,7 @@ log "auto along the demo bag against the transient model at resolution 256 (abou
 /usr/bin/python3 "$REPO/scripts/bag_model_accuracy.py" --bag-analyze "$BIN/bag_analyze" --reference-resolution 256 \
   --before "$REPO/bench/demo_bag_before.json" --noise-fraction 0.25 --out "$OUT/bag.json"
 log "the recorded manoeuvre at 100 Hz (data/manoeuvre.bag) and 1 kHz (recorded now): every message against a converged reference (about 3 minutes)"
-record_scenario "$REPO/config/manoeuvre_scenario.yaml" 1000 manoeuvre_1khz
-/usr/bin/python3 "$REPO/scripts/stream_benchmark.py" --bag-analyze "$BIN/bag_analyze" --params "$REPO/config/contact_estimator.yaml" \
-  --scenario "$REPO/config/manoeuvre_scenario.yaml" --reference-resolution 128 --confirm-resolution 256 \
-  --bags "$REPO/data/manoeuvre.bag" "$OUT/manoeuvre_1khz.bag" --out "$OUT/streams.json"
+streams
 log "a hostile stream (config/hostile_scenario.yaml: nearly every bristle sliding) at 100 and 30 Hz: does the work budget keep a message within 1 ms"
 for rate in 100 30; do
   record_scenario "$REPO/config/hostile_scenario.yaml" "$rate" "hostile_$rate"
@@ -60,26 +106,13 @@ log "random robots on random manoeuvres (scripts/stream_sweep.py, 24 seeded stre
 /usr/bin/python3 "$REPO/scripts/stream_sweep.py" --bag-analyze "$BIN/bag_analyze" --dir "$OUT/sweep" --streams 24 \
   --seed 1000 --out "$OUT/sweep.json"
 log "node over roscpp on loopback (the node pinned to one core), the recorded manoeuvres at their pace, and bag replay"
-PORT=$((20000 + RANDOM % 20000))
-export ROS_MASTER_URI="http://localhost:$PORT"
-roscore -p "$PORT" > "$OUT/roscore.log" 2>&1 &
-ROSCORE=$!
-NODE=""
-trap 'kill $NODE $ROSCORE 2>/dev/null || true' EXIT
-until rostopic list > /dev/null 2>&1; do sleep 0.2; done
-rosparam load "$REPO/config/contact_estimator.yaml" /contact_estimator
-taskset -c 1 "$BIN/contact_estimator_node" __name:=contact_estimator > "$OUT/node.log" 2>&1 &
-NODE=$!
-taskset -c 0 "$BIN/node_benchmark" _duration:=2.0 _streams:="$REPO/data/manoeuvre.bag,$OUT/manoeuvre_1khz.bag" > "$OUT/node.json"
-kill $NODE $ROSCORE 2>/dev/null || true
-wait 2>/dev/null || true
+node_on_streams
 log "bag_analyze's replay path on a generated bag of 1.1e5 odometry messages, one core (about 3 minutes)"
 taskset -c 0 "$BIN/replay_benchmark" > "$OUT/replay.json"
 taskset -c 0 "$BIN/replay_benchmark" --tf --models off linear steady > "$OUT/replay_tf.json"
 taskset -c 0 "$BIN/replay_benchmark" --writers > "$OUT/writers.json"
 log "the recorded manoeuvres through the same path, each brush model (replay_benchmark --streams)"
-taskset -c 0 "$BIN/replay_benchmark" --streams "$REPO/data/manoeuvre.bag" "$OUT/manoeuvre_1khz.bag" \
-  --params "$REPO/config/contact_estimator.yaml" --models off linear steady transient auto > "$OUT/replay_streams.json"
+replay_streams
 log "the calibration over 100 seeds, a 60-s run's time, runs that are not the model's, 100 runs fitting the floor too,"
 log "100 random robots (about 50 minutes)"
 "$BIN/calibration_accuracy" --seeds 100 --floors 100 --robots 100 > "$OUT/calibration.json"

@@ -5,17 +5,18 @@
 // bag by bag_analyze's own path, analyzeBag (messages per second).
 //
 // Then, with streams (a list of bags: recorded manoeuvres), each bag's odometry published at its recorded pace into the
-// node at its configured settings: every message's latency from publication to the estimate's arrival (p50, p99, max)
-// and how many were answered.
+// node at its configured settings, stream_runs times (default 3): every message's latency from publication to the
+// estimate's arrival (p50, p99, max) of the run with the lowest p99, each run's p99, and the fewest answered in a run.
 //
 // Run by scripts/benchmark.sh beside `contact_estimator_node` (pinned to one core); prints JSON.
 // Private parameters: node (default /contact_estimator), duration per rate [s], rates (list), models (list), streams
-// (bag paths, comma-separated; default none).
+// (bag paths, comma-separated; default none), stream_runs (default 3).
 
 // STL
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <mutex>
 #include <string>
@@ -81,6 +82,7 @@ int main(int argc, char** argv)
   pnh.getParam("rates", rates);
   std::vector<int> models{ 1, 2, 3, 4 };
   pnh.getParam("models", models);
+  const int stream_runs = std::max(1, pnh.param("stream_runs", 3));
   // bags, comma-separated (a private parameter given on the command line is a string)
   std::vector<std::string> streams;
   {
@@ -205,34 +207,52 @@ int main(int argc, char** argv)
       config.brush_model = 4;  // the default: auto
       client.setConfiguration(config);
       ros::WallDuration(0.3).sleep();
-      {
-        std::lock_guard<std::mutex> lock(mutex);
-        latencies.clear();
-        received = 0;
-      }
-      // a gap beyond max_step first (the node forgets the last run), then the bag's offsets from now
-      ros::WallDuration(0.6).sleep();
+      // Each bag `stream_runs` times: a shared host's scheduler adds latency spikes of 10 ms and more to single runs
+      // (the same bag's p99 at 1 kHz was 1.0 and 3.9 ms in two runs minutes apart), so the run with the lowest p99 is
+      // reported, every run's p99 beside it; messages lost in any run count.
       const ros::Time t0 = messages.front().header.stamp;
-      const auto start = std::chrono::steady_clock::now();
-      for (std::size_t i = 0; i < messages.size(); ++i)
-      {
-        const double offset = (messages[i].header.stamp - t0).toSec();
-        std::this_thread::sleep_until(start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                  std::chrono::duration<double>(offset)));
-        nav_msgs::Odometry o = messages[i];
-        o.header.stamp = ros::Time::now();  // the latency is measured from here
-        pub.publish(o);
-      }
-      const ros::WallTime drain = ros::WallTime::now() + ros::WallDuration(2.0);
-      while (received < messages.size() && ros::WallTime::now() < drain)
-        ros::WallDuration(0.005).sleep();
-      std::lock_guard<std::mutex> lock(mutex);
       const double duration = (messages.back().header.stamp - t0).toSec();
+      double best_p50 = NAN, best_p99 = INFINITY, best_max = NAN;
+      std::size_t least_received = messages.size();
+      std::string run_p99s;
+      for (int run = 0; run < stream_runs; ++run)
+      {
+        {
+          std::lock_guard<std::mutex> lock(mutex);
+          latencies.clear();
+          received = 0;
+        }
+        // a gap beyond max_step first (the node forgets the last run), then the bag's offsets from now
+        ros::WallDuration(0.6).sleep();
+        const auto start = std::chrono::steady_clock::now();
+        for (std::size_t i = 0; i < messages.size(); ++i)
+        {
+          const double offset = (messages[i].header.stamp - t0).toSec();
+          std::this_thread::sleep_until(start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                    std::chrono::duration<double>(offset)));
+          nav_msgs::Odometry o = messages[i];
+          o.header.stamp = ros::Time::now();  // the latency is measured from here
+          pub.publish(o);
+        }
+        const ros::WallTime drain = ros::WallTime::now() + ros::WallDuration(2.0);
+        while (received < messages.size() && ros::WallTime::now() < drain)
+          ros::WallDuration(0.005).sleep();
+        std::lock_guard<std::mutex> lock(mutex);
+        const double p99 = percentile(latencies, 0.99);
+        run_p99s += (run ? ", " : "") + std::to_string(p99);
+        least_received = std::min<std::size_t>(least_received, received);
+        if (p99 < best_p99)
+        {
+          best_p99 = p99;
+          best_p50 = percentile(latencies, 0.5);
+          best_max = percentile(latencies, 1.0);
+        }
+      }
       std::printf("%s    {\"bag\": \"%s\", \"rate\": %.0f, \"sent\": %zu, \"received\": %zu, \"p50\": %.6g, \"p99\": %.6g, "
-                  "\"max\": %.6g}",
+                  "\"max\": %.6g, \"run_p99\": [%s]}",
                   bi ? ",\n" : "", streams[bi].substr(streams[bi].find_last_of('/') + 1).c_str(),
-                  duration > 0.0 ? (messages.size() - 1) / duration : 0.0, messages.size(), static_cast<std::size_t>(received),
-                  percentile(latencies, 0.5), percentile(latencies, 0.99), percentile(latencies, 1.0));
+                  duration > 0.0 ? (messages.size() - 1) / duration : 0.0, messages.size(), least_received, best_p50,
+                  best_p99, best_max, run_p99s.c_str());
       std::fflush(stdout);
     }
     std::printf("\n  ],\n");
