@@ -114,7 +114,7 @@ CalibrationRecording readCalibrationBags(const std::vector<std::string>& bags, c
       }
       const Eigen::Vector3d a(msg->linear_acceleration.x, msg->linear_acceleration.y, msg->linear_acceleration.z);
       const double var = 0.5 * (msg->linear_acceleration_covariance[0] + msg->linear_acceleration_covariance[4]);
-      imu.push_back({ msg->header.stamp.toSec(), q * a, var > 0.0 ? var : 0.0 });
+      imu.push_back({ odometry.secondsSinceEpoch(msg->header.stamp), q * a, var > 0.0 ? var : 0.0 });  // (the odometry's clock)
     }
     if (odom.empty())
       throw std::runtime_error(path + ": no message on the odometry topic " + odom_topic);
@@ -134,7 +134,7 @@ CalibrationRecording readCalibrationBags(const std::vector<std::string>& bags, c
       }
     }
     // each odometry message, and the IMU interpolated to its stamp
-    const double first = odom.front()->header.stamp.toSec();
+    const double first = odometry.secondsSinceEpoch(odom.front()->header.stamp);
     const double start = b == 0 ? 0.0 : offset;
     double last = first;
     std::size_t j = 0;

@@ -214,9 +214,10 @@ void ContactEstimatorRos::process(const nav_msgs::Odometry& msg, const std::stri
   const ContactEstimator& core = estimator_.estimator();
   const bool faulted = e.modelFault();
   if (faulted)
-    ROS_ERROR_THROTTLE(5.0, "contact estimator: %s (a defect: please report it with the bag); the estimate is published "
-                            "invalid with BRUSH_FLAG_MODEL_FAULT / FLAG_MODEL_FAULT, the model's state reset",
-                       core.lastFault().c_str());
+    ROS_ERROR_THROTTLE(5.0, "contact estimator: %s, the message stamped %u.%09u (a defect: please report it with the "
+                            "bag); the estimate is published invalid with BRUSH_FLAG_MODEL_FAULT / FLAG_MODEL_FAULT, the "
+                            "model's state reset",
+                       core.lastFault().c_str(), msg.header.stamp.sec, msg.header.stamp.nsec);
   if (out->estimate.messages_dropped > 0)
     ROS_WARN_THROTTLE(5.0, "contact estimator: %u odometry messages missing before this one (a gap in header.seq: the "
                            "queue overflowed, or the source lost them)",

@@ -39,6 +39,20 @@ public:
     sep();
     put(std::to_chars(p_, end(), x, std::chars_format::fixed, 9));
   }
+  // a ROS stamp to the nanosecond, from its integers (as a double, seconds since 1970 resolve only 2.4e-7 s)
+  void stamp(const ros::Time& t)
+  {
+    sep();
+    put(std::to_chars(p_, end(), t.sec));
+    char digits[10];
+    const std::to_chars_result r = std::to_chars(digits, digits + sizeof digits, t.nsec);
+    const std::size_t n = static_cast<std::size_t>(r.ptr - digits);
+    if (r.ec != std::errc() || n > 9 || end() - p_ < 10)
+      return;
+    *p_++ = '.';
+    p_ = std::fill_n(p_, 9 - n, '0');
+    p_ = std::copy(digits, r.ptr, p_);
+  }
   void i(long long x)
   {
     sep();
@@ -72,17 +86,16 @@ private:
 
 void EstimateCsv::write(const ContactEstimate& e)
 {
-  const double stamp = e.header.stamp.toSec();
   if (!have_start_)
   {
     have_start_ = true;
-    start_ = stamp;
+    start_ = e.header.stamp;
   }
   const RollingResistance& r = e.rolling_resistance;
   // ten significant digits, more than any model's accuracy; the stamp to the nanosecond
   Row w;
-  w.fixed9(stamp);
-  w.fixed9(stamp - start_);
+  w.stamp(e.header.stamp);
+  w.fixed9((e.header.stamp - start_).toSec());  // by the stamps' integers: the same in every recording of a stream
   for (double x : { e.rolling_speed, e.heading, e.turn_rate, e.sliding_velocity.x, e.sliding_velocity.y })
     w.g(x);
   w.i(e.slips_defined ? 1 : 0);

@@ -58,6 +58,16 @@ void OdometryEstimator::reset()
   n_sequences_ = 0;
 }
 
+double OdometryEstimator::secondsSinceEpoch(const ros::Time& stamp)
+{
+  if (!have_epoch_)
+  {
+    epoch_ = stamp;
+    have_epoch_ = true;
+  }
+  return (stamp - epoch_).toSec();  // integer nanoseconds, then seconds (negative before the epoch)
+}
+
 std::uint32_t OdometryEstimator::sequenceGap(const std::string& publisher, std::uint32_t seq)
 {
   ++messages_;
@@ -198,7 +208,7 @@ bool OdometryEstimator::toInput(const nav_msgs::Odometry& msg, const tf2::Buffer
   }
   // The twist is in child_frame_id (REP 105): into the gravity-aligned ground frame.
   in = EstimatorInput{};
-  in.stamp = msg.header.stamp.toSec();
+  in.stamp = secondsSinceEpoch(msg.header.stamp);
   in.omega = q * vector(msg.twist.twist.angular);
   in.v_contact = q * vector(msg.twist.twist.linear);
   // the robot's yaw: the contact frame's heading until the sphere rolls (none when its x axis stands vertical)

@@ -39,6 +39,9 @@ namespace
 {
 const std::string kNode = "/contact_estimator";
 double g_clock = 1000.0;  // stamps increase across tests; each test starts after a gap (> max_step)
+// The node's clock counts from the first stamp it is given (OdometryEstimator::secondsSinceEpoch): main() sends it one
+// message at this stamp before the tests, so that the core below can be given the same times.
+const ros::Time kEpoch(500.0);
 
 class EstimatorIo : public ::testing::Test
 {
@@ -87,7 +90,7 @@ protected:
     const auto& q = o.pose.pose.orientation;
     const Eigen::Quaterniond r = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized();
     sce::EstimatorInput in;
-    in.stamp = o.header.stamp.toSec();
+    in.stamp = (o.header.stamp - kEpoch).toSec();
     in.omega = r * Eigen::Vector3d(o.twist.twist.angular.x, o.twist.twist.angular.y, o.twist.twist.angular.z);
     in.v_contact = r * Eigen::Vector3d(o.twist.twist.linear.x, o.twist.twist.linear.y, o.twist.twist.linear.z);
     return in;
@@ -686,6 +689,31 @@ int main(int argc, char** argv)
   ros::NodeHandle keep_alive;
   ros::AsyncSpinner spinner(2);  // the dynamic_reconfigure client waits on callbacks
   spinner.start();
+  {
+    // the node's first message, at kEpoch: its clock's origin (answered, so that the node has taken it)
+    ros::Publisher pub = keep_alive.advertise<nav_msgs::Odometry>("odom", 10);
+    std::mutex mutex;
+    bool answered = false;
+    ros::Subscriber sub = keep_alive.subscribe<sphere_contact_estimator::ContactEstimate>(
+        "contact_estimate", 10, [&](const sphere_contact_estimator::ContactEstimate::ConstPtr& m) {
+          std::lock_guard<std::mutex> lock(mutex);
+          answered = answered || m->header.stamp == kEpoch;
+        });
+    nav_msgs::Odometry first;
+    first.header.stamp = kEpoch;
+    first.header.frame_id = "odom";
+    first.child_frame_id = "base_link";
+    first.pose.pose.orientation.w = 1.0;
+    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(30.0);
+    while (ros::ok() && ros::WallTime::now() < deadline && (pub.getNumSubscribers() == 0 || sub.getNumPublishers() == 0))
+      ros::WallDuration(0.05).sleep();
+    pub.publish(first);
+    if (!sphere_contact_estimator::test::waitFor(mutex, [&] { return answered; }, 10.0))
+    {
+      std::fprintf(stderr, "test_estimator_io: the node did not answer its first message\n");
+      return 1;
+    }
+  }
   const int result = RUN_ALL_TESTS();
   ros::shutdown();
   return result;

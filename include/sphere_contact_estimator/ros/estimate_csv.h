@@ -22,7 +22,7 @@ public:
 private:
   std::ostream& out_;
   bool have_start_ = false;
-  double start_ = 0.0;
+  ros::Time start_;
 };
 
 }  // namespace sphere_contact_estimator

@@ -64,8 +64,13 @@ public:
   /// the inputs themselves (calibrate).
   bool toInput(const nav_msgs::Odometry& msg, const tf2::BufferCore& tf, EstimatorInput& in, Eigen::Vector3d& centre,
                bool& have_centre);
-  /// Forgets the history (time, heading, transient state).
+  /// Forgets the history (time, heading, transient state). The epoch stays.
   void reset();
+  /// The core's time for a stamp: seconds since this estimator's epoch, the first stamp it was given, by ros::Time's
+  /// integer nanoseconds. (A stamp's seconds since 1970, about 1.8e9, hold only to 2.4e-7 s as a double: each step
+  /// of a 1 kHz source was off by up to 2.4e-4 of itself, differently in every recording of the same stream, and
+  /// replays of two recordings parted.)
+  double secondsSinceEpoch(const ros::Time& stamp);
 
   const ContactEstimator& estimator() const { return estimator_; }
   const std::string& groundFrame() const { return ground_frame_; }
@@ -112,6 +117,8 @@ private:
   int n_sequences_ = 0;
   std::uint64_t messages_ = 0;
   ros::Time last_transform_stamp_;  // one contact transform per stamp: no TF_REPEATED_DATA
+  ros::Time epoch_;                 // the core's time 0 (secondsSinceEpoch)
+  bool have_epoch_ = false;
   EstimateOutputs out_;
   Counters counters_;
   std::string last_tf_error_;

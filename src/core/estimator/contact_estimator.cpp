@@ -205,7 +205,7 @@ void ContactEstimator::fault(const char* model, const std::exception& error, con
 {
   ++faults_;
   char head[96];
-  std::snprintf(head, sizeof head, "%s threw at stamp %.9f: ", model, o.stamp);
+  std::snprintf(head, sizeof head, "%s threw at t = %.9f s: ", model, o.stamp);
   last_fault_ = std::string(head) + error.what();
 }
 

@@ -26,7 +26,9 @@ namespace sphere_contact_estimator
 /// (REP 103: z up).
 struct EstimatorInput
 {
-  double stamp = 0.0;                                     ///< message time [s]
+  /// message time [s], from any origin (the ROS layer counts from the first stamp it was given, in integer
+  /// nanoseconds: seconds since 1970 as a double resolve only 2.4e-7 s)
+  double stamp = 0.0;
   Eigen::Vector3d omega = Eigen::Vector3d::Zero();        ///< angular velocity of the sphere [rad/s]
   Eigen::Vector3d v_contact = Eigen::Vector3d::Zero();    ///< velocity of the contact-patch centre [m/s]
   /// The covariance of (v_contact, omega) in the same frame (rows linear x, y, z, angular x, y, z), and what the
