@@ -16,7 +16,6 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <mutex>
 #include <string>
@@ -212,7 +211,8 @@ int main(int argc, char** argv)
       // reported, every run's p99 beside it; messages lost in any run count.
       const ros::Time t0 = messages.front().header.stamp;
       const double duration = (messages.back().header.stamp - t0).toSec();
-      double best_p50 = NAN, best_p99 = INFINITY, best_max = NAN;
+      double best_p50 = 0.0, best_p99 = 0.0, best_max = 0.0;  // (0 where no run got anything back, as percentile's)
+      bool any = false;
       std::size_t least_received = messages.size();
       std::string run_p99s;
       for (int run = 0; run < stream_runs; ++run)
@@ -241,8 +241,9 @@ int main(int argc, char** argv)
         const double p99 = percentile(latencies, 0.99);
         run_p99s += (run ? ", " : "") + std::to_string(p99);
         least_received = std::min<std::size_t>(least_received, received);
-        if (p99 < best_p99)
+        if (!latencies.empty() && (!any || p99 < best_p99))  // (a run that got nothing back has no latency to be best at)
         {
+          any = true;
           best_p99 = p99;
           best_p50 = percentile(latencies, 0.5);
           best_max = percentile(latencies, 1.0);
