@@ -50,6 +50,7 @@ replay_streams() {
   taskset -c 0 "$BIN/replay_benchmark" --streams "$REPO/data/manoeuvre.bag" "$OUT/manoeuvre_1khz.bag" \
     --params "$REPO/config/contact_estimator.yaml" --models off linear steady transient auto > "$OUT/replay_streams.json"
 }
+case "${1:-}" in "" | --stream-targets) ;; *) echo "usage: $0 [--stream-targets]" >&2; exit 2 ;; esac
 install_deps
 mkdir -p "$OUT"
 BIN="$WS/devel/lib/$PKG"
@@ -70,7 +71,6 @@ if [ "${1:-}" = "--stream-targets" ]; then
     --stream-targets "$(hostname), $(nproc) CPUs, library of $(git -C "$REPO" rev-parse --short HEAD)$(git -C "$REPO" diff --quiet HEAD -- src/core || echo ' with changes')"
   exit 0
 fi
-[ -z "${1:-}" ] || { echo "usage: $0 [--stream-targets]" >&2; exit 2; }
 build bench_models model_accuracy node_benchmark contact_estimator_node bag_analyze replay_benchmark calibration_accuracy \
   work_units
 log "timing (Google Benchmark, 3 repetitions, medians)"
