@@ -23,6 +23,7 @@
 
 // Package
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
+#include "sphere_contact_estimator/core/brush/brush_transient.h"
 #include "sphere_contact_estimator/core/estimator/contact_estimator.h"
 #include "allocation_count.h"
 #include "manoeuvre.h"
@@ -194,20 +195,108 @@ TEST(HotPath, TheDefaultSettingsAllocateNothingPerMessageAlongTheManoeuvre)
   }
 }
 
-TEST(HotPath, AutoRefiningOftenAllocatesNothingPerMessage)
+// Auto with a tight target, not raised to the noise, within `budget` from `resolution`: it refines and coarsens its
+// lattice along the manoeuvre.
+EstimatorSettings refining(long budget, int resolution = 32)
 {
-  // a tight target, not raised to the noise, and the budget to reach it: auto refines and coarsens its lattice all
-  // along the manoeuvre (its finer lattices in the storage of those it dropped)
-  SCE_REQUIRE_ALLOCATION_COUNT();
   EstimatorSettings s;
+  s.resolution = resolution;
   s.accuracy_target = 0.001;
   s.auto_noise_fraction = 0.0;
-  s.work_budget = 1000000;
+  s.work_budget = budget;
+  return s;
+}
+
+TEST(HotPath, AutoRefiningOftenAllocatesNothingPerMessage)
+{
+  // the budget to reach the target: auto refines and coarsens its lattice all along the manoeuvre (its finer lattices
+  // in the storage of those it dropped)
+  SCE_REQUIRE_ALLOCATION_COUNT();
+  const EstimatorSettings s = refining(1000000);
   std::string where;
   int changes = 0;
   EXPECT_EQ(warmPassAllocations(s, manoeuvreStream(100.0, 9), where, &changes), 0) << where;
   EXPECT_GE(changes, 2) << "the lattice hardly changed its resolution: the test shows little";
   std::printf("%d changes of resolution in the counted pass\n", changes);
+}
+
+// One pass of the stream through a new estimator, counted from its first message: per message the allocations, the
+// work and the transient model's resolution.
+struct CountedMessage
+{
+  long allocations = 0, work = 0;
+  int resolution = 0;
+};
+std::vector<CountedMessage> firstPass(const EstimatorSettings& settings, const std::vector<EstimatorInput>& stream)
+{
+  ContactEstimator e(settings);
+  std::vector<CountedMessage> out;
+  out.reserve(stream.size());
+  for (const EstimatorInput& in : stream)
+  {
+    CountedMessage m;
+    const ContactEstimateData* d;
+    {
+      const AllocationCount count;
+      d = e.update(in);
+      m.allocations = count.count();
+    }
+    if (d)
+    {
+      m.work = d->work;
+      m.resolution = d->brush_resolution;
+    }
+    out.push_back(m);
+  }
+  return out;
+}
+
+TEST(HotPath, AutoRefinesToTwiceItsResolutionWithoutSizingStorageInAMessage)
+{
+  // Both of auto's lattices hold storage for twice the configured resolution from the start, so that even the first
+  // refinement to it sizes nothing in a message (before, the message that started the finer lattice sized it: 1.0-1.2 ms
+  // of fresh pages at 64, uncounted; and a switch into the transient model sized the resolution it asked for before
+  // the budget cut it). A budget that affords 64 and not 128, a tight target: auto refines from 32 to 64 and back.
+  SCE_REQUIRE_ALLOCATION_COUNT();
+  const EstimatorSettings s = refining(150000);
+  ASSERT_GT(static_cast<long>(BrushTransient::points(128)) * (BrushTransient::kBristleWork + BrushTransient::kSumWork),
+            s.work_budget);
+  const std::vector<CountedMessage> pass = firstPass(s, manoeuvreStream(100.0, 9));
+  std::string where;
+  long total = 0;
+  int at_64 = 0;
+  for (std::size_t i = 1; i < pass.size(); ++i)  // (the first message sizes what is sized once)
+  {
+    total += pass[i].allocations;
+    at_64 += pass[i].resolution == 64;
+    if (pass[i].allocations > 0 && where.size() < 400)
+      where += " message " + std::to_string(i) + ": " + std::to_string(pass[i].allocations) + ";";
+  }
+  EXPECT_EQ(total, 0) << where;
+  EXPECT_GT(at_64, 0) << "auto never refined to 64: the test shows nothing";
+}
+
+TEST(HotPath, StorageALatticeGrowsInAMessageIsCountedAsWork)
+{
+  // Beyond twice the configured resolution a refinement sizes storage in the message that starts it: that message
+  // counts it (BrushTransient::kGrowWork a point), within the budget. Configured 16, presized for 32: the lattice of 64
+  // grows by points(64) - points(32) at least.
+  SCE_REQUIRE_ALLOCATION_COUNT();
+  const EstimatorSettings s = refining(1000000, 16);
+  const std::vector<CountedMessage> pass = firstPass(s, manoeuvreStream(100.0, 9));
+  const long growth = BrushTransient::growthWork(BrushTransient::points(64), BrushTransient::points(32));
+  int growing = 0, at_64 = 0;
+  for (std::size_t i = 1; i < pass.size(); ++i)
+  {
+    at_64 += pass[i].resolution >= 64;
+    if (pass[i].allocations == 0)
+      continue;
+    ++growing;
+    EXPECT_GE(pass[i].work, growth) << "message " << i << " allocated " << pass[i].allocations << " times";
+    EXPECT_LE(pass[i].work, s.work_budget + BrushModel::kWorkGranularity) << "message " << i;
+  }
+  EXPECT_GT(at_64, 0) << "auto never refined to 64: the test shows nothing";
+  EXPECT_GT(growing, 0) << "no message sized storage: the test shows nothing";
 }
 
 TEST(HotPath, EveryModelAllocatesNothingPerMessage)

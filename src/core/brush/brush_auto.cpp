@@ -43,6 +43,16 @@ BrushAuto::BrushAuto(const BrushParameters& parameters)
 {
   transient_resolution_ = configured_resolution_ = std::min(p_.resolution, kMaxTransientResolution);
   transient_ = std::make_unique<BrushTransient>(withResolution(p_, transient_resolution_));
+  // Storage for twice the resolution in both lattices (this one, and the spare a finer one starts in): refining up to
+  // there, taking over and coarsening back size nothing in a message. (The first refinement had sized it there: from 32
+  // to 64, 1.0-1.2 ms of fresh pages in one message, uncounted. At most 2 x 2 MB, at kMaxTransientResolution.) Beyond,
+  // the storage a lattice grows is counted (BrushTransient::growthWork).
+  const int finer = std::min(2 * configured_resolution_, kMaxTransientResolution);
+  if (finer > configured_resolution_)
+  {
+    transient_->reserve(finer);
+    spare_ = std::make_unique<BrushTransient>(withResolution(p_, finer));
+  }
 }
 
 BrushAuto::~BrushAuto() = default;
@@ -61,6 +71,15 @@ void BrushAuto::resizeTransient(int resolution)
       spare_->pointCapacity() > transient_->pointCapacity())
     transient_->swapStorage(*spare_);  // setParameters resets the state at another resolution: only storage changes
   transient_->setParameters(withResolution(p_, resolution));
+}
+
+long BrushAuto::growthWork(int resolution, bool finer) const
+{
+  // transient_ grows in the larger of its own storage and spare_'s (resizeTransient), a finer lattice in spare_'s, or
+  // new (latticeAt)
+  const std::size_t spare = spare_ ? spare_->pointCapacity() : 0;
+  return BrushTransient::growthWork(BrushTransient::points(resolution),
+                                    finer ? spare : std::max(transient_->pointCapacity(), spare));
 }
 
 std::unique_ptr<BrushTransient> BrushAuto::latticeAt(int resolution)
@@ -234,15 +253,24 @@ void BrushAuto::enterTransient(const ContactKinematics& kin, double dt)
   pending_resolution_ = 0;
   const double V = have_rolling_ ? last_rolling_.V_r.norm() : 0.0;
   const double warm = have_rolling_ ? 2.5 * longestPath(p_) / V : 0.0;
-  if (resolution != transient_resolution_)
-    resizeTransient(resolution);
   const int wanted = resolution;
-  // the cost of a lattice grows as its resolution cubed (points times substeps)
+  // the cost of a lattice grows as its resolution cubed (points times substeps); each resolution predicted as the
+  // lattice would stand there (predictWorkAt, the lattice as it is at its own), and only the one chosen sized: growing
+  // the storage costs its fresh pages, which no prediction counts
+  const auto predicted = [&](int r, const ContactKinematics& k, double t) {
+    const bool as_is = r == wanted ? r == transient_resolution_ || r == transient_->lastResolution()
+                                   : false;  // (halved from the one before: a lattice allocated afresh)
+    return as_is ? transient_->predictWork(k, t) : transient_->predictWorkAt(r, k, t);
+  };
   while (resolution / 2 >= BrushTransient::kMinCoarsened &&
-         (have_rolling_ ? transient_->predictWork(last_rolling_, warm) : 0) + transient_->predictWork(kin, dt) > remaining())
-  {
+         (have_rolling_ ? predicted(resolution, last_rolling_, warm) : 0) + predicted(resolution, kin, dt) +
+                 growthWork(resolution, false) >
+             remaining())
     resolution /= 2;
-    transient_->setParameters(withResolution(p_, resolution));  // smaller: within its storage
+  if (resolution != transient_resolution_ || resolution != wanted)
+  {
+    spent_ += growthWork(resolution, false);
+    resizeTransient(resolution);
   }
   transient_resolution_ = resolution;
   budget_cut_ = resolution < wanted ? wanted : 0;
@@ -568,11 +596,14 @@ BrushForces BrushAuto::transientAnswer(const ContactKinematics& kin, const Slips
     // times after a budget cut too, that robot, coarsened to 16 by a weave it could not afford at 32, stayed at 16
     // through the roll after it (1 s), flagged at 89 of 101 messages with estimates up to four times the target, while
     // 32 needed about a third of the budget there (docs/speed_and_accuracy.md).
+    // (and its storage, sized now where the spare's is short of it: growthWork)
     const long cost =
         finer <= budget_cut_ ? transient_->predictFinerWork(kin, dt) : 8 * transient_->predictWork(kin, dt);
-    const bool affordable = cost <= remaining();
+    const long growth = growthWork(finer, true);
+    const bool affordable = cost + growth <= remaining();
     if (s.defined && affordable)
     {
+      spent_ += growth;
       finer_ = latticeAt(finer);
       finer_travel_ = 0.0;
     }

@@ -3,6 +3,7 @@
 // STL
 #include <algorithm>
 #include <array>
+#include <tuple>
 #include <cmath>
 
 // Boost
@@ -200,6 +201,12 @@ void BrushTransient::allocate()
   resizeState(size, false);
   resizeState(size, true);
   reset();
+}
+
+void BrushTransient::reserve(int resolution)
+{
+  const std::size_t size = points(resolution);
+  std::apply([size](auto&... v) { (v.reserve(size), ...); }, perPointArrays());
 }
 
 void BrushTransient::resizeState(std::size_t size, bool scratch)
@@ -422,28 +429,39 @@ int BrushTransient::substepsAt(const ContactKinematics& kin, double dt, double h
 
 long BrushTransient::predictWork(const ContactKinematics& kin, double dt) const
 {
+  return predictWorkFor(w_, h_, arc_visit_share_, kin, dt);
+}
+
+long BrushTransient::predictWorkAt(int resolution, const ContactKinematics& kin, double dt) const
+{
+  // as allocate() and reset() would leave it
+  return predictWorkFor(windowWidth(resolution), 2.0 * p_.a / resolution, 1.0, kin, dt);
+}
+
+long BrushTransient::predictWorkFor(int w, double h, double share, const ContactKinematics& kin, double dt) const
+{
   // the lattice's, and the last update's streak search (the rigid law's, reserved before the steps)
   long lattice;
+  const long points = static_cast<long>(w) * w;
   if (!p_.tilt && stepping_ == TransientStepping::WholeStep)
   {
     // the closed forms of every bristle, the sums, and the sliding steps
-    lattice = static_cast<long>(w_) * w_ * kBristleWork + sumsWork() +
-              static_cast<long>(predictSteps(kin, dt)) * kStepWork;
+    lattice = points * kBristleWork + points * kSumWork + static_cast<long>(predictStepsAt(kin, dt, h)) * kStepWork;
   }
   else if (stepping_ == TransientStepping::WholeStep)
-    lattice = arcsWork(dt > 0.0 ? substeps(kin, dt) : 0, w_);
+    lattice = arcsWorkAt(dt > 0.0 ? substepsAt(kin, dt, h) : 0, w, share);
   else
-    lattice = substepsWork(dt > 0.0 ? substeps(kin, dt) : 0, w_);
+    lattice = substepsWork(dt > 0.0 ? substepsAt(kin, dt, h) : 0, w);
   return lattice + streak_work_;
 }
 
-long BrushTransient::arcsWork(int n, long w) const
+long BrushTransient::arcsWorkAt(int n, long w, double visit_share) const
 {
   // every point's closed form (or its being outside), the sums, and the substeps at the last update's share of points
   // times substeps, with room for that share to grow by half (where they do not fit, the stepped bristles take fewer
   // substeps, their error counted), and never more than the lattice's loop would count: a point that closes after v
   // substeps counts v kPointWork + kBristleWork with v < n, at most n kPointWork
-  const double share = std::min(1.0, 1.5 * arc_visit_share_ + 0.05);
+  const double share = std::min(1.0, 1.5 * visit_share + 0.05);
   const double visits = share * (n < 0 ? kMaxSubsteps : n) * static_cast<double>(w * w);
   return std::min(w * w * (kBristleWork + kSumWork) + static_cast<long>(std::ceil(visits)) * kPointWork,
                   substepsWork(n, w));

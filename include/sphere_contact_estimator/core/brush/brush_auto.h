@@ -161,11 +161,14 @@ private:
   std::unique_ptr<BrushTransient> transient_;
   std::unique_ptr<BrushTransient> finer_;  // twice the resolution, rolling beside transient_ until it takes over
   // A lattice auto no longer rolls (a finer one dropped, a coarse one taken over), kept so that the next finer lattice
-  // reuses its storage: a refinement allocates only where it is finer than any before (test_hot_path_allocations)
+  // reuses its storage: a refinement allocates only where it is finer than any before and than twice the configured
+  // resolution, which both lattices hold from the start (test_hot_path_allocations)
   std::unique_ptr<BrushTransient> spare_;
   void retire(std::unique_ptr<BrushTransient>& lattice);  // into spare_ where its storage is the larger; null after
   std::unique_ptr<BrushTransient> latticeAt(int resolution);  // a new lattice (BrushTransient(...)), spare_'s storage
   void resizeTransient(int resolution);  // transient_->setParameters at it, with spare_'s storage where that is larger
+  // the storage transient_ (resizeTransient) or, finer, a finer lattice (latticeAt) at `resolution` would grow
+  long growthWork(int resolution, bool finer) const;
   double finer_travel_ = 0.0;
   int transient_resolution_ = 16;
   int configured_resolution_ = 16;  // what reset() restores

@@ -136,6 +136,17 @@ public:
   void renew(const BrushParameters& parameters);
   /// The points the per-point arrays hold without allocating, and the points a lattice of `resolution` has.
   std::size_t pointCapacity() const { return u_.capacity(); }
+  /// Storage for a lattice of `resolution`, the lattice unchanged: growing to it later allocates nothing.
+  void reserve(int resolution);
+  /// What sizing storage of `capacity` points for `needed` costs (BrushForces::work units): kGrowWork a point it lacks.
+  static long growthWork(std::size_t needed, std::size_t capacity)
+  {
+    return needed > capacity ? static_cast<long>(needed - capacity) * kGrowWork : 0;
+  }
+  /// A point's storage sized in an update: its arrays' fresh pages faulted in and filled. Constructing lattices of
+  /// resolution 32-256 took 190-300 ns a point on this machine kind (about 2.8 us a 4-KiB page; the units about
+  /// 10 ns), a whole millisecond at 64 in the message that refined to it, uncounted before.
+  static constexpr long kGrowWork = 24;
   static std::size_t points(int resolution)
   {
     return static_cast<std::size_t>(windowWidth(resolution)) * windowWidth(resolution);
@@ -206,6 +217,12 @@ public:
   static constexpr double kTimeTolerance = 0.2;
   /// The work one update at these kinematics would do, before the rows' correction (for auto's choice of lattice).
   long predictWork(const ContactKinematics& kinematics, double dt) const;
+  /// The same for this lattice once setParameters had put it at another resolution (allocated afresh there: its window
+  /// and spacing, the arcs' share reset), without sizing its storage: auto chooses the resolution it can afford first.
+  /// (Sizing it first, a switch into the transient model that asked for 64 on a 4.4-mm patch grew the storage for 64,
+  /// its fresh pages 1.1-1.4 ms uncounted, before the budget cut the lattice to 16: 1.6 ms for 34 k units, sweep seed
+  /// 7312 at 2.88 s.)
+  long predictWorkAt(int resolution, const ContactKinematics& kinematics, double dt) const;
   /// The same for a lattice of twice the resolution that has rolled as this one (for auto's refinement): without tilt
   /// four times the points and the sums, and the sliding steps four times as many bristles take at a tolerance a
   /// quarter of this one's (kFinerSteps); with tilt, substeps, its own substeps over its own window.
@@ -241,11 +258,14 @@ private:
   double timeTolerance() const;  // eq. (4b)'s steps: what each one's error may reach [m]
   // without tilt: as many sliding steps per travel as the last update took, over this one's travel (a bristle's steps
   // end with its path: no more than a transit's)
-  double predictSteps(const ContactKinematics& kin, double dt) const
+  double predictSteps(const ContactKinematics& kin, double dt) const { return predictStepsAt(kin, dt, h_); }
+  double predictStepsAt(const ContactKinematics& kin, double dt, double h) const  // the same at spacing h
   {
     const double travel = std::min(kin.V_r.norm() * std::max(dt, 0.0), 2.0 * p_.a);
-    return last_steps_ / std::max(last_travel_, h_) * travel;
+    return last_steps_ / std::max(last_travel_, h) * travel;
   }
+  // predictWork for a lattice of window width w, spacing h and arcs' share `share` (arcsWork)
+  long predictWorkFor(int w, double h, double share, const ContactKinematics& kin, double dt) const;
   long last_steps_ = 0;          // the sliding steps of the last whole-step update, and its travel (predictWork)
   double last_travel_ = 0.0;
   void substep(const ContactKinematics& kin, double dt);
@@ -266,7 +286,8 @@ private:
   // the share of points times substeps the last update took (or, cut short, would have taken) bristle by bristle
   double arc_visit_share_ = 1.0;
   // what an update by n substeps stepped bristle by bristle is predicted to count over a window w points wide
-  long arcsWork(int n, long w) const;
+  long arcsWork(int n, long w) const { return arcsWorkAt(n, w, arc_visit_share_); }
+  long arcsWorkAt(int n, long w, double visit_share) const;
   std::vector<std::size_t> arc_stepping_;  // the points advanceArcs steps (sized with the lattice: no allocation)
   bool arcStaysInside(const ContactKinematics& kin, const FrictionCap& cap, const Eigen::Vector2d& u,
                       const Eigen::Vector2d& x, const Eigen::Vector2d& x_end, double tau) const;
