@@ -257,9 +257,9 @@ void BrushAuto::enterTransient(const ContactKinematics& kin, double dt)
   // the cost of a lattice grows as its resolution cubed (points times substeps); each resolution predicted as the
   // lattice would stand there (predictWorkAt, the lattice as it is at its own), and only the one chosen sized: growing
   // the storage costs its fresh pages, which no prediction counts
+  // (one halved from the one before is a lattice allocated afresh)
   const auto predicted = [&](int r, const ContactKinematics& k, double t) {
-    const bool as_is = r == wanted ? r == transient_resolution_ || r == transient_->lastResolution()
-                                   : false;  // (halved from the one before: a lattice allocated afresh)
+    const bool as_is = r == wanted && (r == transient_resolution_ || r == transient_->lastResolution());
     return as_is ? transient_->predictWork(k, t) : transient_->predictWorkAt(r, k, t);
   };
   while (resolution / 2 >= BrushTransient::kMinCoarsened &&
