@@ -259,8 +259,7 @@ TEST(HotPath, AutoRefinesToTwiceItsResolutionWithoutSizingStorageInAMessage)
   // the budget cut it). A budget that affords 64 and not 128, a tight target: auto refines from 32 to 64 and back.
   SCE_REQUIRE_ALLOCATION_COUNT();
   const EstimatorSettings s = refining(150000);
-  ASSERT_GT(static_cast<long>(BrushTransient::points(128)) * (BrushTransient::kBristleWork + BrushTransient::kSumWork),
-            s.work_budget);
+  ASSERT_GT(BrushTransient::leastUpdateWork(128, false), s.work_budget);
   const std::vector<CountedMessage> pass = firstPass(s, manoeuvreStream(100.0, 9));
   std::string where;
   long total = 0;

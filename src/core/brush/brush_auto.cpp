@@ -259,7 +259,7 @@ void BrushAuto::enterTransient(const ContactKinematics& kin, double dt)
   // the storage costs its fresh pages, which no prediction counts
   // (one halved from the one before is a lattice allocated afresh)
   const auto predicted = [&](int r, const ContactKinematics& k, double t) {
-    const bool as_is = r == wanted && (r == transient_resolution_ || r == transient_->lastResolution());
+    const bool as_is = r == wanted && r == transient_->lastResolution();
     return as_is ? transient_->predictWork(k, t) : transient_->predictWorkAt(r, k, t);
   };
   while (resolution / 2 >= BrushTransient::kMinCoarsened &&
@@ -267,7 +267,7 @@ void BrushAuto::enterTransient(const ContactKinematics& kin, double dt)
                  growthWork(resolution, false) >
              remaining())
     resolution /= 2;
-  if (resolution != transient_resolution_ || resolution != wanted)
+  if (resolution != transient_->lastResolution())  // (transient_resolution_ is always the lattice's own)
   {
     spent_ += growthWork(resolution, false);
     resizeTransient(resolution);

@@ -446,7 +446,7 @@ long BrushTransient::predictWorkFor(int w, double h, double share, const Contact
   if (!p_.tilt && stepping_ == TransientStepping::WholeStep)
   {
     // the closed forms of every bristle, the sums, and the sliding steps
-    lattice = points * kBristleWork + points * kSumWork + static_cast<long>(predictStepsAt(kin, dt, h)) * kStepWork;
+    lattice = points * (kBristleWork + kSumWork) + static_cast<long>(predictStepsAt(kin, dt, h)) * kStepWork;
   }
   else if (stepping_ == TransientStepping::WholeStep)
     lattice = arcsWorkAt(dt > 0.0 ? substepsAt(kin, dt, h) : 0, w, share);
