@@ -528,6 +528,62 @@ TEST(RimEntry, ItsBoundHoldsFromTheRimOverEveryStepLength)
   EXPECT_EQ(over, 0);
 }
 
+TEST(BristleAdvance, ARowsFirstTryChangesOnlyTheStepsAndStaysWithinTheirError)
+{
+  // The first try a row hands on (advance()'s first_step): none (null) and an unbounded one (INFINITY) take the whole
+  // span first, the same answer to the last bit; any other, from 1e-16 of a span to ten spans, changes the steps only.
+  // Its answer must stay within its own error bound of the fine integration, take at most eight tries more than the
+  // whole span first (here at most 5: a first try is never below a fifth of the span; without that floor a hint of
+  // 1e-16 of the span takes 22 steps or more to grow back, at most five times a step),
+  // and hand on a first try that is positive (or INFINITY: the piece's end in one step). Seeded sliding bristles of the
+  // default robot as compareWithFine draws them, at the lattice's tolerances for resolutions 16 to 64.
+  BrushParameters p = EstimatorSettings{}.brushParameters();
+  p.sliding_law = SlidingLaw::Coulomb;
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double c = p.mu * peakFactor(p.pressure) * p.F_z / (M_PI * p.a * p.a) / p.k;
+  int compared = 0, shortened = 0;
+  for (int n = 0; n < 600; ++n)
+  {
+    const ContactKinematics kin = randomDrive(rng, 4.3);
+    const int resolution = 16 << (n % 3);
+    const double tolerance = 0.2 * c / (resolution * resolution);
+    const double span = n % 2 == 0 ? 1e-3 : 1e-2;
+    const lattice::BristleAdvance advance(p, kin, tolerance);
+    const double r = 0.95 * p.a * std::sqrt(unit(rng)), where = 2.0 * M_PI * unit(rng);
+    const Eigen::Vector2d x0 = r * Eigen::Vector2d(std::cos(where), std::sin(where));
+    const Eigen::Vector2d w0 = advance.drive(x0);
+    const double theta0 = std::atan2(w0.y(), w0.x()) + (80.0 * M_PI / 180.0) * (2.0 * unit(rng) - 1.0);
+    const double hint = span * std::pow(10.0, -16.0 + 17.0 * unit(rng));
+    if (w0.norm() == 0.0 || (x0 - span * kin.V_r).norm() >= p.a)
+      continue;
+    Eigen::Vector2d fine;
+    if (!fineSlide(advance, x0, kin.V_r, theta0, span, 20000, fine))
+      continue;
+    lattice::BristleState start;
+    start.u = advance.bound(x0) * Eigen::Vector2d(std::cos(theta0), std::sin(theta0));
+    start.sliding = true;
+    start.slip_travel = 0.0;
+    lattice::BristleState none = start, unbounded = start, hinted = start;
+    double first_unbounded = INFINITY, first_hinted = hint;
+    const int steps_none = advance.advance(none, x0, span, false, 1000);
+    const int steps_unbounded = advance.advance(unbounded, x0, span, false, 1000, &first_unbounded);
+    const int steps_hinted = advance.advance(hinted, x0, span, false, 1000, &first_hinted);
+    EXPECT_EQ(steps_unbounded, steps_none) << "case " << n;
+    EXPECT_EQ(unbounded.u, none.u) << "case " << n;
+    EXPECT_EQ(unbounded.step_error, none.step_error) << "case " << n;
+    EXPECT_LE(steps_hinted, steps_none + 8) << "case " << n << ", first try " << hint / span << " of the span";
+    EXPECT_TRUE(first_hinted > 0.0 && first_unbounded > 0.0) << "case " << n;
+    if (!none.sliding || !hinted.sliding)
+      continue;  // ended adhering (an onset within the fine run's own resolution)
+    ++compared;
+    shortened += hint < span;
+    EXPECT_LE((hinted.u - fine).norm(), hinted.step_error + 1e-15) << "case " << n;
+  }
+  EXPECT_GE(compared, 300);
+  EXPECT_GE(shortened, 250);
+}
+
 TEST(BristleAdvance, AnOnsetLocatedIsCountedAndOneTheBudgetCannotPayForIsNot)
 {
   // An adhering bristle that reaches its bound within the message: locating its onset isolates a quartic's root, about

@@ -509,6 +509,7 @@ bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
   {
     const Eigen::Vector2d first = rowStart(j);
     const std::size_t row = index(0, j);
+    double first_step = INFINITY;  // eq. (4b): the sliding steps' first try, handed along the row (advance())
     for (int i = 0; i < w_; ++i)
     {
       const std::size_t p = row + i;
@@ -547,7 +548,7 @@ bool BrushTransient::advanceWhole(const ContactKinematics& kin, double dt)
         }
       }
       const int allowed = pool > 0 ? static_cast<int>(std::min<long>(kMaxBristleSteps, pool / kStepWork)) : 0;
-      const int taken = advance.advance(s, x0, duration, at_rim, allowed);
+      const int taken = advance.advance(s, x0, duration, at_rim, allowed, &first_step);
       steps += taken;
       pool -= taken * kStepWork;
       enough = enough && !s.cut;  // (its remainder in one step, or events it did not follow)

@@ -162,7 +162,7 @@ bool BristleAdvance::remainder(BristleState& s, const Eigen::Vector2d& x, double
 }
 
 int BristleAdvance::advance(BristleState& s, const Eigen::Vector2d& x_start, double duration, bool at_rim,
-                            int max_steps) const
+                            int max_steps, double* first_step) const
 {
   int steps = 0;
   if (!(c_ > 0.0))
@@ -265,7 +265,8 @@ int BristleAdvance::advance(BristleState& s, const Eigen::Vector2d& x_start, dou
     // eq. (4b)
     const double re = speed2_ == 0.0             ? coulombSlideStill(s, x, left)
                       : coulombSlideFrozen(s, x, left) ? INFINITY
-                                                       : coulombSlide(s, x, left, steps, final_event ? steps + 1 : max_steps);
+                                                       : coulombSlide(s, x, left, steps, final_event ? steps + 1 : max_steps,
+                                                                      first_step);
     const double run = std::min(re, left);
     x -= run * V_r_;
     left -= run;

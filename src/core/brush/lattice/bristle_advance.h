@@ -58,7 +58,16 @@ public:
   /// counted). Returns the steps taken (work), and with them each event located by isolating a polynomial's root (an
   /// onset's quartic, the rigid law's re-adhesion: about a step's work; where nearly every bristle reaches its bound in
   /// an update, the first one of a transient model at 10 ms, they had been a third of its instructions, uncounted).
-  int advance(BristleState& s, const Eigen::Vector2d& x_start, double duration, bool at_rim, int max_steps) const;
+  ///
+  /// first_step (eq. 4b; may be null): the first try of each sliding piece's steps, where a neighbour's suggests a
+  /// shorter one than the whole span; it is updated to the step controller's next length after this bristle's first
+  /// Magnus step from a piece's start. The lattice passes one along each row (its bristles' paths ask for about the same
+  /// steps): a whole span tried first was rejected for its error in 18 % of the Magnus steps of Fig. 4's message at
+  /// resolution 128, each rejected try as dear as an accepted one. Along a row, not across rows: the answers stay
+  /// mirror-symmetric (a mirrored lattice visits its rows in the mirrored order). A first try only: each step's error
+  /// is estimated and held to the tolerance as before.
+  int advance(BristleState& s, const Eigen::Vector2d& x_start, double duration, bool at_rim, int max_steps,
+              double* first_step = nullptr) const;
 
   /// An adhering bristle that cannot reach its bound within `duration` from x_start (staysInside): u advanced over it
   /// in closed form, true (what advance() does there, without its events' machinery); else false, u untouched.
@@ -131,7 +140,8 @@ private:
   bool remainder(BristleState& s, const Eigen::Vector2d& x, double span, double b_start, double b_end) const;
   // eq. (4b)'s sliding from the piece's start over span (CoulombSlide, coulomb_slide.cpp): returns when it ended
   // (re-adhered: < span) and the steps
-  double coulombSlide(BristleState& s, const Eigen::Vector2d& x_start, double span, int& steps, int max_steps) const;
+  double coulombSlide(BristleState& s, const Eigen::Vector2d& x_start, double span, int& steps, int max_steps,
+                      double* first_step) const;
   double coulombSlideStill(BristleState& s, const Eigen::Vector2d& x, double span) const;
   // A piece that rolls far less than its drive and bound change over: coulombSlideStill at the path's middle, its error
   // bounded by how far they move; true where that is within the tolerance and the bristle slides throughout (then

@@ -24,6 +24,9 @@ namespace
 constexpr double kRimNear = 0.5;
 // A step with pull |w| / b times its length above this is stiff: the Magnus series' reach (it converges below pi)
 constexpr double kStiffPull = 3.0;
+// The shortest first try a neighbour's step suggests (BristleAdvance::advance's first_step), as a share of the span: the
+// shortest retry after a rejected step
+constexpr double kFirstStepShare = 0.2;
 // coulombSlideFrozen: within this share of the tolerance. Its bound stands about 5 times above its error (test
 // BristleAdvance.SlidingStepErrorBoundsTheErrorInPlaceAndSlow) and carries no contraction beyond the frozen flow's,
 // where the steps it spares claim theirs: at the whole tolerance the 1 kHz recording's pivot (0.3 m/s, half a spacing
@@ -320,13 +323,15 @@ bool BristleAdvance::exponentialStep(const Along& p, const Point& q0, const Poin
 class BristleAdvance::CoulombSlide
 {
 public:
-  CoulombSlide(const BristleAdvance& a, BristleState& s, const Along& p, double span, int& steps, int max_steps)
+  CoulombSlide(const BristleAdvance& a, BristleState& s, const Along& p, double span, int& steps, int max_steps,
+               double* first_step)
     : a_(a)
     , s_(s)
     , p_(p)
     , span_(span)
     , steps_(steps)
     , max_steps_(max_steps)
+    , first_step_(first_step)
     , turn_(p_.w.x() * a.w_dot_.y() - p_.w.y() * a.w_dot_.x())
   {
   }
@@ -411,13 +416,16 @@ private:
   const double span_;
   int& steps_;
   const int max_steps_;
+  double* const first_step_;  // a neighbour's suggested first try, and where this piece leaves its own (advance())
   const double turn_;  // w x w', the drive's turn times |w|^2 (the same along the piece: w is affine in tau)
 };
 
 inline double BristleAdvance::CoulombSlide::run()
 {
   Walk walk;
-  walk.step = span_;
+  // (never shorter than a rejected whole span's retry could be: a neighbour's short steps, at the rim, were else handed
+  // on from bristle to bristle, down to 1e-16 of a span, and a test of random histories ran for minutes)
+  walk.step = first_step_ ? std::min(span_, std::max(*first_step_, kFirstStepShare * span_)) : span_;
   walk.known = a_.at(p_, 0.0);
   walk.crosses = a_.m_ > 0 ? -1 : 0;
   if (walk.known.b > 0.0 && s_.u.squaredNorm() > 0.0 && pushing(walk.known, s_.u / s_.u.norm()) < 0.0)
@@ -478,8 +486,11 @@ inline double BristleAdvance::CoulombSlide::run()
       walk.step = d * (m.turned ? 0.25 : std::max(0.2, 0.9 * std::sqrt(std::sqrt(a_.tolerance_ / m.error))));
       continue;
     }
+    const bool from_start = walk.tau == 0.0;
     if (takeMagnus(walk, m, e0, d, ended))
       return ended;
+    if (from_start && first_step_)
+      *first_step_ = walk.tau < walk.end ? walk.step : INFINITY;  // (to its end at once: the whole span next)
   }
   return walk.end < span_ ? walk.end : INFINITY;  // at G's edge it is pushed no more
 }
@@ -800,11 +811,11 @@ inline bool BristleAdvance::CoulombSlide::takeMagnus(Walk& walk, const Magnus& m
 }
 
 double BristleAdvance::coulombSlide(BristleState& s, const Eigen::Vector2d& x_start, double span, int& steps,
-                                    int max_steps) const
+                                    int max_steps, double* first_step) const
 {
   const Quadratic t = tAlong(x_start);
   const Along p{ x_start, drive(x_start), t.t0, t.t1, t.t2 };
-  return CoulombSlide(*this, s, p, span, steps, max_steps).run();
+  return CoulombSlide(*this, s, p, span, steps, max_steps, first_step).run();
 }
 
 }  // namespace sphere_contact_estimator::lattice
