@@ -121,11 +121,47 @@ ContactKinematics randomDrive(std::mt19937_64& rng, double decades)
   return kin;
 }
 
-// `count` seeded random sliding bristles of the default robot (a = 10 mm): rolling from a standstill's noise (0.1 mm/s)
-// to 2 m/s (slow: to 50 mm/s, spin in place and a parked robot's noise), spin up to 15 rad/s either way, sliding up to
-// 0.3 m/s, the bristle anywhere within 0.95 a on its bound within 80 degrees of its drive; one message of 1 ms or
-// 10 ms (slow: slow_message); the lattice's tolerance at resolutions 16, 32, 64. Each against the fine integration
-// (20000 steps, its own error far below), where it slides throughout.
+// A seeded random sliding bristle of the default robot (a = 10 mm) at case n: rolling from a standstill's noise
+// (0.1 mm/s) to 2 m/s (slow: to 50 mm/s, spin in place and a parked robot's noise), spin up to 15 rad/s either way,
+// sliding up to 0.3 m/s, the bristle anywhere within 0.95 a on its bound within 80 degrees of its drive; one message of
+// 1 ms or 10 ms (slow: slow_message); the lattice's tolerance at resolutions 16, 32, 64; and the fine integration's end
+// (20000 steps, its own error far below). False (after its draws) where it has no drive, passes the patch edge within
+// the span (the lattice takes a bristle off there) or re-adheres within it: not these tests' subject.
+struct SlidingCase
+{
+  ContactKinematics kin;
+  int resolution = 0;
+  double tolerance = 0.0, span = 0.0;
+  Eigen::Vector2d x0, fine;
+  lattice::BristleState start;
+};
+bool drawSlidingCase(std::mt19937_64& rng, const BrushParameters& p, int n, bool slow, double slow_message,
+                     SlidingCase& out)
+{
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double c = p.mu * peakFactor(p.pressure) * p.F_z / (M_PI * p.a * p.a) / p.k;  // the bound at the centre
+  out.kin = randomDrive(rng, slow ? 2.7 : 4.3);
+  out.resolution = 16 << (n % 3);
+  out.tolerance = 0.2 * c / (out.resolution * out.resolution);  // BrushTransient::timeTolerance
+  out.span = slow ? slow_message : (n % 2 == 0 ? 1e-3 : 1e-2);
+  const lattice::BristleAdvance advance(p, out.kin, out.tolerance);
+  const double r = 0.95 * p.a * std::sqrt(unit(rng)), where = 2.0 * M_PI * unit(rng);
+  out.x0 = r * Eigen::Vector2d(std::cos(where), std::sin(where));
+  const Eigen::Vector2d w0 = advance.drive(out.x0);
+  const double theta0 = std::atan2(w0.y(), w0.x()) + (80.0 * M_PI / 180.0) * (2.0 * unit(rng) - 1.0);
+  if (w0.norm() == 0.0 || (out.x0 - out.span * out.kin.V_r).norm() >= p.a)
+    return false;
+  if (!fineSlide(advance, out.x0, out.kin.V_r, theta0, out.span, 20000, out.fine))
+    return false;
+  out.start = lattice::BristleState{};
+  out.start.u = advance.bound(out.x0) * Eigen::Vector2d(std::cos(theta0), std::sin(theta0));
+  out.start.sliding = true;
+  out.start.slip_travel = 0.0;
+  return true;
+}
+
+// `count` sliding bristles drawn by drawSlidingCase, each advanced over its message against the fine integration,
+// where it slides throughout.
 Comparison compareWithFine(bool slow, unsigned seed, int count, double slow_message = 1e-3,
                            PressureDistribution pressure = EstimatorSettings{}.brushParameters().pressure)
 {
@@ -133,33 +169,18 @@ Comparison compareWithFine(bool slow, unsigned seed, int count, double slow_mess
   p.sliding_law = SlidingLaw::Coulomb;
   p.pressure = pressure;
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const double c = p.mu * peakFactor(p.pressure) * p.F_z / (M_PI * p.a * p.a) / p.k;  // the bound at the centre
   Comparison out;
   for (int n = 0; n < count; ++n)
   {
-    const ContactKinematics kin = randomDrive(rng, slow ? 2.7 : 4.3);
-    const int resolution = 16 << (n % 3);
-    const double tolerance = 0.2 * c / (resolution * resolution);  // BrushTransient::timeTolerance
-    const double span = slow ? slow_message : (n % 2 == 0 ? 1e-3 : 1e-2);
-    const lattice::BristleAdvance advance(p, kin, tolerance);
-    const double r = 0.95 * p.a * std::sqrt(unit(rng)), where = 2.0 * M_PI * unit(rng);
-    const Eigen::Vector2d x0 = r * Eigen::Vector2d(std::cos(where), std::sin(where));
-    const Eigen::Vector2d w0 = advance.drive(x0);
-    const double theta0 = std::atan2(w0.y(), w0.x()) + (80.0 * M_PI / 180.0) * (2.0 * unit(rng) - 1.0);
-    if (w0.norm() == 0.0 || (x0 - span * kin.V_r).norm() >= p.a)
-      continue;  // no drive, or past the patch edge within the span (the lattice takes a bristle off there)
-    Eigen::Vector2d fine;
-    if (!fineSlide(advance, x0, kin.V_r, theta0, span, 20000, fine))
-      continue;  // it re-adheres within the message: not this test's subject
-    lattice::BristleState s;
-    s.u = advance.bound(x0) * Eigen::Vector2d(std::cos(theta0), std::sin(theta0));
-    s.sliding = true;
-    s.slip_travel = 0.0;
-    const int steps = advance.advance(s, x0, span, false, 1000);
+    SlidingCase b;
+    if (!drawSlidingCase(rng, p, n, slow, slow_message, b))
+      continue;
+    const lattice::BristleAdvance advance(p, b.kin, b.tolerance);
+    lattice::BristleState s = b.start;
+    const int steps = advance.advance(s, b.x0, b.span, false, 1000);
     if (!s.sliding)
       continue;  // it ended adhering (an onset within the fine run's own resolution)
-    const double ratio = out.add(n, (s.u - fine).norm(), s.step_error, tolerance, kin, span, resolution);
+    const double ratio = out.add(n, (s.u - b.fine).norm(), s.step_error, b.tolerance, b.kin, b.span, b.resolution);
     if (steps == 0)
     {
       ++out.frozen;
@@ -534,51 +555,35 @@ TEST(BristleAdvance, ARowsFirstTryChangesOnlyTheStepsAndStaysWithinTheirError)
   // span first, the same answer to the last bit; any other, from 1e-16 of a span to ten spans, changes the steps only.
   // Its answer must stay within its own error bound of the fine integration, take at most eight tries more than the
   // whole span first (here at most 5: a first try is never below a fifth of the span; without that floor a hint of
-  // 1e-16 of the span takes 22 steps or more to grow back, at most five times a step),
-  // and hand on a first try that is positive (or INFINITY: the piece's end in one step). Seeded sliding bristles of the
-  // default robot as compareWithFine draws them, at the lattice's tolerances for resolutions 16 to 64.
+  // 1e-16 of the span takes 22 steps or more to grow back, at most five times a step), and hand on a first try that is
+  // positive (or INFINITY: the piece's end in one step). Sliding bristles as drawSlidingCase draws them.
   BrushParameters p = EstimatorSettings{}.brushParameters();
   p.sliding_law = SlidingLaw::Coulomb;
   std::mt19937_64 rng(41);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const double c = p.mu * peakFactor(p.pressure) * p.F_z / (M_PI * p.a * p.a) / p.k;
   int compared = 0, shortened = 0;
   for (int n = 0; n < 600; ++n)
   {
-    const ContactKinematics kin = randomDrive(rng, 4.3);
-    const int resolution = 16 << (n % 3);
-    const double tolerance = 0.2 * c / (resolution * resolution);
-    const double span = n % 2 == 0 ? 1e-3 : 1e-2;
-    const lattice::BristleAdvance advance(p, kin, tolerance);
-    const double r = 0.95 * p.a * std::sqrt(unit(rng)), where = 2.0 * M_PI * unit(rng);
-    const Eigen::Vector2d x0 = r * Eigen::Vector2d(std::cos(where), std::sin(where));
-    const Eigen::Vector2d w0 = advance.drive(x0);
-    const double theta0 = std::atan2(w0.y(), w0.x()) + (80.0 * M_PI / 180.0) * (2.0 * unit(rng) - 1.0);
-    const double hint = span * std::pow(10.0, -16.0 + 17.0 * unit(rng));
-    if (w0.norm() == 0.0 || (x0 - span * kin.V_r).norm() >= p.a)
+    SlidingCase b;
+    if (!drawSlidingCase(rng, p, n, false, 0.0, b))
       continue;
-    Eigen::Vector2d fine;
-    if (!fineSlide(advance, x0, kin.V_r, theta0, span, 20000, fine))
-      continue;
-    lattice::BristleState start;
-    start.u = advance.bound(x0) * Eigen::Vector2d(std::cos(theta0), std::sin(theta0));
-    start.sliding = true;
-    start.slip_travel = 0.0;
-    lattice::BristleState none = start, unbounded = start, hinted = start;
+    const double hint = b.span * std::pow(10.0, -16.0 + 17.0 * unit(rng));
+    const lattice::BristleAdvance advance(p, b.kin, b.tolerance);
+    lattice::BristleState none = b.start, unbounded = b.start, hinted = b.start;
     double first_unbounded = INFINITY, first_hinted = hint;
-    const int steps_none = advance.advance(none, x0, span, false, 1000);
-    const int steps_unbounded = advance.advance(unbounded, x0, span, false, 1000, &first_unbounded);
-    const int steps_hinted = advance.advance(hinted, x0, span, false, 1000, &first_hinted);
+    const int steps_none = advance.advance(none, b.x0, b.span, false, 1000);
+    const int steps_unbounded = advance.advance(unbounded, b.x0, b.span, false, 1000, &first_unbounded);
+    const int steps_hinted = advance.advance(hinted, b.x0, b.span, false, 1000, &first_hinted);
     EXPECT_EQ(steps_unbounded, steps_none) << "case " << n;
     EXPECT_EQ(unbounded.u, none.u) << "case " << n;
     EXPECT_EQ(unbounded.step_error, none.step_error) << "case " << n;
-    EXPECT_LE(steps_hinted, steps_none + 8) << "case " << n << ", first try " << hint / span << " of the span";
+    EXPECT_LE(steps_hinted, steps_none + 8) << "case " << n << ", first try " << hint / b.span << " of the span";
     EXPECT_TRUE(first_hinted > 0.0 && first_unbounded > 0.0) << "case " << n;
     if (!none.sliding || !hinted.sliding)
       continue;  // ended adhering (an onset within the fine run's own resolution)
     ++compared;
-    shortened += hint < span;
-    EXPECT_LE((hinted.u - fine).norm(), hinted.step_error + 1e-15) << "case " << n;
+    shortened += hint < b.span;
+    EXPECT_LE((hinted.u - b.fine).norm(), hinted.step_error + 1e-15) << "case " << n;
   }
   EXPECT_GE(compared, 300);
   EXPECT_GE(shortened, 250);
