@@ -11,17 +11,14 @@
 #include "sphere_contact_estimator/core/brush/brush_steady.h"
 #include "sphere_contact_estimator/core/numerics/unscented_transform.h"
 
+// The brush library's private rooms
+#include "plane_rotation.h"
+
 namespace sphere_contact_estimator
 {
 namespace
 {
 constexpr double kCovarianceFloor = 1e-4;  // the tightest tolerance of a sigma point's evaluation [mu F_z]
-
-Eigen::Matrix2d rotation(double angle)
-{
-  const double c = std::cos(angle), s = std::sin(angle);
-  return (Eigen::Matrix2d() << c, -s, s, c).finished();
-}
 
 // d(F_x, F_y, M_z) / d(sigma_x, sigma_y, phi, psi) of the linear model at psi = 0: eqs. 61-62 (and the spin term of
 // M_z), with the scaling onto the friction circle past mu F_z, where F_t' = s F_t and M_z' = s M_z with
